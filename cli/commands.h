@@ -1,0 +1,24 @@
+// cli/commands.h — the subcommands of the `vcmm` command. The CLI holds no logic of its own:
+// each command parses options, calls the library and formats the result.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace vcmm::cli {
+
+/// Exit codes shared by all commands (docs/cli.md).
+enum ExitCode : int {
+  kOk = 0,
+  kFailure = 1,        ///< unexpected internal error
+  kUsage = 2,          ///< bad command line
+  kInvalidInput = 3,   ///< input file or values rejected (message names file/line/value)
+  kUndefined = 4,      ///< valid input, but the quantity does not exist for it
+};
+
+/// Registers `vcmm roundness`; the callback stores its exit code in `*exit_code`.
+void add_roundness_command(CLI::App& app, int* exit_code);
+
+/// Registers `vcmm simulate` (a ring-gauge measurement on the virtual CMM).
+void add_simulate_command(CLI::App& app, int* exit_code);
+
+}  // namespace vcmm::cli

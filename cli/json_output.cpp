@@ -1,0 +1,84 @@
+#include "json_output.h"
+
+#include "vcmm/geometry/certificate.h"
+
+namespace vcmm::cli {
+namespace {
+
+using nlohmann::json;
+namespace g = vcmm::geometry;
+
+void put_ron(json& j, const g::RoundnessParameters& r) {
+  j["RONt"] = r.ront;
+  j["RONp"] = r.ronp;
+  j["RONv"] = r.ronv;
+  j["RONq"] = r.ronq;
+}
+
+const char* optimality_name(g::Optimality o) {
+  return o == g::Optimality::global ? "global" : "local";
+}
+
+template <class Circle>
+void put_certificate(json& j, std::span<const g::Point2> profile, const Circle& c) {
+  const g::Verification v = g::verify(profile, c);
+  j["certified"] = v.valid;
+  j["optimality"] = optimality_name(c.certificate.optimality);
+  j["certificate"] = c.certificate.argument;
+  if (!v.valid) j["verification_failure"] = v.reason;
+}
+
+}  // namespace
+
+nlohmann::json to_json(std::span<const g::Point2> profile, const g::RoundnessEvaluation& e) {
+  json out;
+  out["n_points"] = e.n_points;
+  out["filter"] = e.filter_cutoff_upr ? json(*e.filter_cutoff_upr) : json(nullptr);
+  if (e.least_squares) {
+    const auto& c = *e.least_squares;
+    json j;
+    j["center"] = {c.center.x, c.center.y};
+    j["radius"] = c.radius;
+    put_ron(j, c.ron);
+    j["contacts"] = c.contacts;
+    j["certified"] = false;
+    j["optimality"] = "numerical";
+    j["certificate"] = "none: least squares is a numerical fit (Gauss-Newton converged in " +
+                       std::to_string(c.iterations) + " iterations)";
+    out["LS"] = j;
+  }
+  if (e.minimum_zone) {
+    const auto& c = *e.minimum_zone;
+    json j;
+    j["center"] = {c.center.x, c.center.y};
+    j["inner_radius"] = c.inner_radius;
+    j["outer_radius"] = c.outer_radius;
+    put_ron(j, c.ron);
+    j["contacts"] = {{"outer", c.outer_contacts}, {"inner", c.inner_contacts}};
+    put_certificate(j, profile, c);
+    out["MZ"] = j;
+  }
+  if (e.maximum_inscribed) {
+    const auto& c = *e.maximum_inscribed;
+    json j;
+    j["center"] = {c.center.x, c.center.y};
+    j["radius"] = c.radius;
+    put_ron(j, c.ron);
+    j["contacts"] = c.contacts;
+    put_certificate(j, profile, c);
+    out["MI"] = j;
+  }
+  if (e.minimum_circumscribed) {
+    const auto& c = *e.minimum_circumscribed;
+    json j;
+    j["center"] = {c.center.x, c.center.y};
+    j["radius"] = c.radius;
+    put_ron(j, c.ron);
+    j["contacts"] = c.contacts;
+    put_certificate(j, profile, c);
+    out["MC"] = j;
+  }
+  return out;
+}
+
+}  // namespace vcmm::cli

@@ -1,0 +1,26 @@
+// vcmm — command-line front end of the vcmm library (docs/cli.md).
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"vcmm: exact ISO 12181-2 roundness evaluation and a validated virtual CMM"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "vcmm 0.1.0");
+  int exit_code = vcmm::cli::kOk;
+  vcmm::cli::add_roundness_command(app, &exit_code);
+  vcmm::cli::add_simulate_command(app, &exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : vcmm::cli::kUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "vcmm: internal error: " << e.what() << "\n";
+    return vcmm::cli::kFailure;
+  }
+  return exit_code;
+}

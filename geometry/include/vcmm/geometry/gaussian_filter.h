@@ -1,0 +1,49 @@
+// vcmm/geometry/gaussian_filter.h — the ISO 16610-21 Gaussian profile filter for closed
+// (roundness) profiles.
+//
+// Transmission of harmonic k (undulations per revolution, UPR) for cut-off f_c:
+//   H(k) = exp(−π (α k / f_c)²) = 2^−(k/f_c)²,   α = sqrt(ln 2 / π) ≈ 0.4697
+// Weighting function in angle θ (rad), with cut-off wavelength λ_c = 2π / f_c:
+//   s(θ) = 1/(α λ_c) · exp(−π (θ / (α λ_c))²), wrapped periodically.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "vcmm/geometry/point.h"
+
+namespace vcmm::geometry {
+
+/// The standard cut-offs of ISO 12181-2 (UPR).
+inline constexpr double kStandardCutoffsUpr[] = {15.0, 50.0, 150.0, 500.0, 1500.0};
+
+/// How a profile was filtered.
+enum class FilterPath {
+  fft,          ///< equiangular samples in angular order: exact per-harmonic transmission
+  nonuniform,   ///< uneven spacing: weighted convolution with quadrature weights
+};
+
+struct FilteredProfile {
+  /// Filtered points, same count and order as the input: point i lies on the ray from the
+  /// filter centre through input point i, at the filtered radius.
+  std::vector<Point2> points;
+  Point2 filter_center;   ///< LS centre about which radial deviations were taken
+  double mean_radius = 0.0;
+  FilterPath path = FilterPath::fft;
+};
+
+/// Gaussian filter of a closed profile's radial deviations (about its LS centre).
+/// Equiangular data (spacing within 1e-6 of 2π/n, in angular order) is filtered exactly by
+/// FFT; other data by direct convolution with the wrapped weighting function and
+/// trapezoidal quadrature weights, normalised so a constant deviation passes unchanged.
+/// Preconditions (InvalidInput): ≥ 8 finite points, cut-off in (0, n/2], and the profile
+/// closed: it must go once round its centre with no angular gap wider than λ_c / 2.
+/// Complexity: O(n log n) (FFT) or O(n · m) with m points under ±3 α λ_c.
+FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr);
+
+/// Filters an equiangular closed sequence of radial deviations (any unit) by the exact
+/// transmission H(k). Precondition: ≥ 2 finite values, cut-off > 0 (InvalidInput).
+std::vector<double> gaussian_filter_closed(std::span<const double> deviations,
+                                           double cutoff_upr);
+
+}  // namespace vcmm::geometry

@@ -1,0 +1,34 @@
+// vcmm/geometry/maximum_inscribed.h — the maximum-inscribed (MI) reference circle,
+// ISO 12181-1 / MICI: the largest circle that the profile encloses.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "vcmm/geometry/certificate.h"
+#include "vcmm/geometry/point.h"
+#include "vcmm/geometry/roundness_parameters.h"
+
+namespace vcmm::geometry {
+
+struct MaximumInscribedCircle {
+  Point2 center;        ///< few ulps from the exact rational centre (a Voronoi vertex)
+  double radius = 0.0;  ///< few ulps from the exact value
+  /// 3 contact indices, the exact centre strictly inside their triangle.
+  std::vector<std::size_t> contacts;
+  RoundnessParameters ron;  ///< about (center, radius): RONv = 0, RONt = RONp
+  Certificate certificate;
+};
+
+/// Largest circle with no profile point inside it and its centre inside the profile's
+/// convex hull. The optimum is a nearest-point Voronoi vertex with its three contacts
+/// around it. Fast path warm-started at LS on the inner candidates, confirmed on all
+/// points; Delaunay-based exhaustive method as fallback.
+/// Preconditions: ≥ 3 finite points, not collinear (InvalidInput). Throws UndefinedResult
+/// when the largest empty circle in the hull is not surrounded by its contacts (partial
+/// arcs, too sparse a profile): the MI circle is then not defined by ISO 12181.
+/// Complexity: O(n) for round profiles; O(n log n) in the fallback.
+MaximumInscribedCircle maximum_inscribed_circle(std::span<const Point2> points);
+
+}  // namespace vcmm::geometry

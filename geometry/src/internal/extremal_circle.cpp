@@ -1,0 +1,333 @@
+// internal/extremal_circle.cpp — exact circles and the rigorous floating filter shared by
+// the MC and MI fitters.
+//
+// The floating filter (ExactCircle::inside_below / outside_above)
+// ----------------------------------------------------------------
+// All lengths are taken in scaled units (× s, s = 2^k chosen so that R*·s ∈ [0.7, 1.5)):
+// scaling by a power of two is exact, so the analysis below is that of unit-size circles
+// and holds for any input magnitude (no overflow or underflow of the squares).
+// Let e = |p − c̃|·s and D̃ = fl(X² + Y²) with X = fl(px − c̃x)·s, Y likewise (a difference
+// whose exact value is subnormal is exact). Each of the five roundings is a factor
+// (1 + ε), |ε| ≤ u, so D̃ = e²·θ with θ ∈ [(1 − u)⁴, (1 + u)⁴]:
+//   e² ≤ D̃(1 + 4.1u),   e² ≥ D̃(1 − 4u).
+// With d = |p − c*|·s, |d − e| ≤ δ (δ in scaled units). The scaled radius r̃ (below)
+// gives R*s ∈ [r̃(1 − 2.3u), r̃(1 + 2.3u)]; we use the rounded bounds R_lo = fl(r̃(1 − 4u))
+// ≤ R*s and R_hi = fl(r̃(1 + 4u)) ≥ R*s.
+//  * strictly inside: d ≤ e + δ < R_lo  ⇐  D̃(1 + 4.1u) < (R_lo − δ)².
+//    inside_below = fl(fl(R_lo − δ)²)·(1 − 16u) ≤ (R_lo − δ)²(1 − 11.9u) after its own
+//    three roundings, so D̃ < inside_below implies the condition.
+//  * strictly outside: d ≥ e − δ > R_hi  ⇐  D̃(1 − 4u) > (R_hi + δ)².
+//    outside_above = fl(fl(R_hi + δ)²)·(1 + 16u) ≥ (R_hi + δ)²(1 + 11.9u).
+// The 16u factors are the error terms above with a margin of ~4u for the thresholds' own
+// roundings: generous, and still a band of only ~1e-15 relative around the circle.
+// Subnormal or overflowing D̃ values are far below or far above the thresholds (≈ 1), where
+// the decision stays right (an overflowed D̃ = +inf does mean e > 1e154 > R_hi + δ). The
+// filter is off (every test exact) when s or δ·s leaves the double range or δ·s > R̃·s/4.
+//
+// δ: ratio_to_double is within 1.25 ulp (≤ 2.5u|x|, or a subnormal ulp) of the exact
+// value, so |c̃ − c*| ≤ 2.6u(|c̃x| + |c̃y|) + 2⁻¹⁰⁷³; we use δ = 4u(|c̃x| + |c̃y|) + 2⁻¹⁰⁷²
+// (× s, + 1e-300). R*²s² is within 1.25 ulp (2.5u relative) of its double, whose sqrt r̃
+// is rounded once: R*·s ∈ [r̃(1 − 2.3u), r̃(1 + 2.3u)].
+//
+// dot_sign: with ã = fl(a − o), b̃ = fl(b − o) (componentwise, relative error ≤ u each) the
+// value ṽ = fl(fl(ãx·b̃x) + fl(ãy·b̃y)) differs from the exact (a − o)·(b − o) by at most
+// ((1 + u)⁴ − 1)·(|ãx·b̃x| + |ãy·b̃y|)(1 + u) ≤ 4.01u·S; we demand |ṽ| > 8u·S + 1e-300
+// (the absolute term covers underflow of the products; S is rounded upwards by the
+// factor 2 margin). Non-finite values (overflow) go to the exact predicate.
+#include "internal/extremal_circle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <stdexcept>
+
+namespace vcmm::geometry::internal {
+
+namespace {
+
+// ---- exact integer representation ----------------------------------------------------
+// A finite double x ≠ 0 is m·2^k with m an integer, |m| < 2^53 (frexp, then scale the
+// fraction by 2^53: exact, also for subnormals).
+int exponent_of(double x) {
+  int e = 0;
+  (void)std::frexp(x, &e);
+  return e - 53;
+}
+
+constexpr int kNoExponent = std::numeric_limits<int>::max();
+
+int min_exponent(std::initializer_list<double> xs) {
+  int e = kNoExponent;
+  for (double x : xs)
+    if (x != 0.0) e = std::min(e, exponent_of(x));
+  return e == kNoExponent ? 0 : e;
+}
+
+/// x / 2^e as an exact integer; precondition: x is a multiple of 2^e.
+mpz_class scaled(double x, int e) {
+  if (x == 0.0) return 0;
+  int k = 0;
+  const double f = std::frexp(x, &k);
+  mpz_class z(static_cast<long>(std::ldexp(f, 53)));
+  const int shift = k - 53 - e;
+  if (shift > 0) z <<= static_cast<unsigned long>(shift);
+  return z;
+}
+
+mpz_class shifted(const mpz_class& z, int s) {
+  return s > 0 ? mpz_class(z << static_cast<unsigned long>(s)) : z;
+}
+
+/// n/d = m·2^x with m ∈ [0.5, 1) (n, d > 0): the integer quotient is taken with ≥ 54
+/// significant bits (truncation error < 2⁻⁵⁴ relative) and then truncated to 53 bits, so
+/// m·2^x is within 1.25 ulp of n/d. Returns m; x in `exp`.
+double ratio_frexp(const mpz_class& n, const mpz_class& d, long& exp) {
+  long s = 55 + static_cast<long>(mpz_sizeinbase(d.get_mpz_t(), 2)) -
+           static_cast<long>(mpz_sizeinbase(n.get_mpz_t(), 2));
+  if (s < 0) s = 0;
+  mpz_class q = n << static_cast<unsigned long>(s);
+  q /= d;  // truncating division
+  long ex = 0;
+  const double mant = mpz_get_d_2exp(&ex, q.get_mpz_t());
+  exp = ex - s;
+  return mant;
+}
+
+/// n/d · 2^e to double (d > 0), within 1.25 ulp (plus the rounding of ldexp into the
+/// subnormal range; ±inf beyond the double range).
+double ratio_to_double(const mpz_class& n, const mpz_class& d, long e) {
+  if (sgn(n) == 0) return 0.0;
+  long x = 0;
+  const double mant = ratio_frexp(abs(n), d, x);
+  const double v = std::ldexp(mant, static_cast<int>(std::clamp(x + e, -4000L, 4000L)));
+  return sgn(n) < 0 ? -v : v;
+}
+
+void finish(ExactCircle& c) {
+  const long e = c.exponent;
+  c.center_d = {ratio_to_double(c.nx, c.den, e), ratio_to_double(c.ny, c.den, e)};
+  c.scale = 1.0;
+  c.scale_exponent = 0;
+  c.radius_scaled = 0.0;
+  c.radius = 0.0;
+  c.filter_usable = false;
+  if (sgn(c.r2num) == 0) return;
+  // R*² = m·2^T, m ∈ [0.5, 1); scale s = 2^k with k = −⌊T/2⌋ puts R*²·s² in [0.5, 2).
+  long x = 0;
+  const double m = ratio_frexp(c.r2num, mpz_class(c.den * c.den), x);
+  const long t = x + 2 * e;
+  const long k = -((t >= 0 ? t : t - 1) / 2);  // −⌊t/2⌋
+  c.scale_exponent = static_cast<int>(std::clamp(k, -4000L, 4000L));
+  c.scale = std::ldexp(1.0, static_cast<int>(std::clamp(k, -1022L, 1023L)));
+  const double r2s = std::ldexp(m, static_cast<int>(t + 2 * k));  // exact: in [0.5, 2)
+  c.radius_scaled = std::sqrt(r2s);
+  c.radius = std::ldexp(c.radius_scaled, static_cast<int>(-c.scale_exponent));
+  const double cx = std::fabs(c.center_d.x), cy = std::fabs(c.center_d.y);
+  const double u = kUnitRoundoff;
+  // δ in scaled units: 1.25 ulp per coordinate (≤ 2.5u|c|), or a subnormal ulp each.
+  c.center_error_scaled =
+      (4.0 * u * (cx + cy) + 0x1p-1072) * c.scale + 1e-300;
+  c.filter_usable = c.support_size >= 2 && k > -1022 && k < 1023 &&
+                    std::isfinite(c.center_error_scaled) &&
+                    c.center_error_scaled < 0.25 * c.radius_scaled;
+  if (!c.filter_usable) return;
+  const double r_lo = c.radius_scaled * (1.0 - 4.0 * u);
+  const double r_hi = c.radius_scaled * (1.0 + 4.0 * u);
+  const double delta = c.center_error_scaled;
+  const double m_in = r_lo - delta;
+  c.inside_below = (m_in * m_in) * (1.0 - 16.0 * u);
+  const double m_out = r_hi + delta;
+  c.outside_above = (m_out * m_out) * (1.0 + 16.0 * u);
+}
+
+}  // namespace
+
+double sample_scale(std::span<const Point2> points, Point2 c, std::size_t stride) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < points.size(); i += stride)
+    m = std::max({m, std::fabs(points[i].x - c.x), std::fabs(points[i].y - c.y)});
+  if (!(m > 0.0) || !std::isfinite(m)) return 1.0;
+  int e = 0;
+  (void)std::frexp(m, &e);  // m = f·2^e, f ∈ [0.5, 1)
+  return std::ldexp(1.0, std::clamp(-e, -1022, 1023));
+}
+
+WarmStart kasa_center(std::span<const Point2> points) {
+  // A warm start needs no more than ~256 points: take every stride-th one (a measured
+  // profile is ordered along the contour, so a stride keeps the angular coverage).
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / 256);
+  double count = 0.0, mx = 0.0, my = 0.0;
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    mx += points[i].x;
+    my += points[i].y;
+    count += 1.0;
+  }
+  mx /= count;
+  my /= count;
+  if (!std::isfinite(mx) || !std::isfinite(my)) {  // sums overflowed: use a point
+    mx = points[0].x;
+    my = points[0].y;
+  }
+  // Work on (p − mean)·s, s a power of two making the coordinates O(1): no overflow of the
+  // third moments whatever the input magnitude.
+  const double sc = sample_scale(points, {mx, my}, stride);
+  double suu = 0, suv = 0, svv = 0, suuu = 0, svvv = 0, suvv = 0, svuu = 0;
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    const Point2& p = points[i];
+    const double u = (p.x - mx) * sc, v = (p.y - my) * sc;
+    const double uu = u * u, vv = v * v;
+    suu += uu;
+    suv += u * v;
+    svv += vv;
+    suuu += uu * u;
+    svvv += vv * v;
+    suvv += u * vv;
+    svuu += v * uu;
+  }
+  // Bullock's centred Kåsa system: [suu suv; suv svv]·(a, b) = ½(suuu + suvv, svvv + svuu).
+  const double det = suu * svv - suv * suv;
+  // Relative singularity test: det ≥ 1e-12·suu·svv keeps the warm start finite; the value
+  // is irrelevant to correctness.
+  if (!(det > 1e-12 * suu * svv) || !std::isfinite(det)) return {{mx, my}, sc};
+  const double rx = 0.5 * (suuu + suvv), ry = 0.5 * (svvv + svuu);
+  const double a = (rx * svv - ry * suv) / det / sc;
+  const double b = (ry * suu - rx * suv) / det / sc;
+  const Point2 c{mx + a, my + b};
+  if (!std::isfinite(c.x) || !std::isfinite(c.y)) return {{mx, my}, sc};
+  return {c, sc};
+}
+
+ExactCircle exact_point_circle(Point2 a) {
+  ExactCircle c;
+  c.support_size = 1;
+  c.support[0] = a;
+  c.exponent = min_exponent({a.x, a.y});
+  c.nx = scaled(a.x, c.exponent);
+  c.ny = scaled(a.y, c.exponent);
+  c.den = 1;
+  c.r2num = 0;
+  finish(c);
+  return c;
+}
+
+ExactCircle exact_diametral_circle(Point2 a, Point2 b) {
+  ExactCircle c;
+  c.support_size = 2;
+  c.support[0] = a;
+  c.support[1] = b;
+  const int e = min_exponent({a.x, a.y, b.x, b.y});
+  const mpz_class ax = scaled(a.x, e), ay = scaled(a.y, e);
+  const mpz_class bx = scaled(b.x, e), by = scaled(b.y, e);
+  // centre = (a + b)/2, centre − a = (b − a)/2.
+  c.exponent = e;
+  c.den = 2;
+  c.nx = ax + bx;
+  c.ny = ay + by;
+  const mpz_class ox = bx - ax, oy = by - ay;
+  c.r2num = ox * ox + oy * oy;
+  finish(c);
+  return c;
+}
+
+ExactCircle exact_circumcircle(Point2 a, Point2 b, Point2 cc) {
+  ExactCircle c;
+  c.support_size = 3;
+  c.support = {a, b, cc};
+  const int e = min_exponent({a.x, a.y, b.x, b.y, cc.x, cc.y});
+  const mpz_class ax = scaled(a.x, e), ay = scaled(a.y, e);
+  // Relative to a: u = b − a, v = c − a; centre − a = (v_y|u|² − u_y|v|², u_x|v|² − v_x|u|²)/d
+  // with d = 2(u_x v_y − u_y v_x) (Cramer on the bisector equations 2u·x = |u|², 2v·x = |v|²).
+  const mpz_class ux = scaled(b.x, e) - ax, uy = scaled(b.y, e) - ay;
+  const mpz_class vx = scaled(cc.x, e) - ax, vy = scaled(cc.y, e) - ay;
+  mpz_class d = 2 * (ux * vy - uy * vx);
+  if (sgn(d) == 0)
+    throw std::logic_error("exact_circumcircle: collinear support points (internal error)");
+  const mpz_class u2 = ux * ux + uy * uy, v2 = vx * vx + vy * vy;
+  mpz_class ox = vy * u2 - uy * v2, oy = ux * v2 - vx * u2;
+  if (sgn(d) < 0) {
+    d = -d;
+    ox = -ox;
+    oy = -oy;
+  }
+  c.exponent = e;
+  c.den = d;
+  c.nx = ax * d + ox;
+  c.ny = ay * d + oy;
+  c.r2num = ox * ox + oy * oy;
+  finish(c);
+  return c;
+}
+
+int compare_radius(const ExactCircle& a, const ExactCircle& b) {
+  const int m = std::min(a.exponent, b.exponent);
+  const mpz_class lhs = shifted(a.r2num * b.den * b.den, 2 * (a.exponent - m));
+  const mpz_class rhs = shifted(b.r2num * a.den * a.den, 2 * (b.exponent - m));
+  return cmp(lhs, rhs) < 0 ? -1 : (cmp(lhs, rhs) > 0 ? 1 : 0);
+}
+
+bool same_center(const ExactCircle& a, const ExactCircle& b) {
+  const int m = std::min(a.exponent, b.exponent);
+  return shifted(a.nx * b.den, a.exponent - m) == shifted(b.nx * a.den, b.exponent - m) &&
+         shifted(a.ny * b.den, a.exponent - m) == shifted(b.ny * a.den, b.exponent - m);
+}
+
+CGAL::Bounded_side exact_side(const ExactCircle& circle, Point2 p) {
+  switch (circle.support_size) {
+    case 1:
+      return p == circle.support[0] ? CGAL::ON_BOUNDARY : CGAL::ON_UNBOUNDED_SIDE;
+    case 2: {
+      const int s = dot_sign(p, circle.support[0], circle.support[1]);
+      return s < 0 ? CGAL::ON_BOUNDED_SIDE : (s == 0 ? CGAL::ON_BOUNDARY : CGAL::ON_UNBOUNDED_SIDE);
+    }
+    default: {
+      const EPoint a = to_epick(circle.support[0]), b = to_epick(circle.support[1]),
+                   c = to_epick(circle.support[2]);
+      return side_of_circumcircle(a, b, c, CGAL::orientation(a, b, c), to_epick(p));
+    }
+  }
+}
+
+int dot_sign(Point2 o, Point2 a, Point2 b) {
+  const double ax = a.x - o.x, ay = a.y - o.y, bx = b.x - o.x, by = b.y - o.y;
+  const double px = ax * bx, py = ay * by;
+  const double v = px + py;
+  const double bound = 8.0 * kUnitRoundoff * (std::fabs(px) + std::fabs(py)) + 1e-300;
+  if (std::isfinite(v) && std::isfinite(bound)) {
+    if (v > bound) return 1;
+    if (v < -bound) return -1;
+  }
+  switch (CGAL::angle(to_epick(a), to_epick(o), to_epick(b))) {
+    case CGAL::ACUTE:
+      return 1;
+    case CGAL::RIGHT:
+      return 0;
+    default:
+      return -1;
+  }
+}
+
+mpq_class exact_r2(const ExactCircle& circle) {
+  mpq_class q(circle.r2num, mpz_class(circle.den * circle.den));
+  q.canonicalize();
+  const long e2 = 2L * circle.exponent;
+  if (e2 > 0) q <<= static_cast<unsigned long>(e2);
+  if (e2 < 0) q >>= static_cast<unsigned long>(-e2);
+  return q;
+}
+
+double exact_power_gap(const ExactCircle& circle, Point2 p) {
+  // Common exponent e' = min(e, exponents of p); shift the circle's integers by e − e'.
+  const int e = std::min(circle.exponent, min_exponent({p.x, p.y}));
+  const int s = circle.exponent - e;
+  const mpz_class nx = shifted(circle.nx, s), ny = shifted(circle.ny, s);
+  const mpz_class r2num = shifted(circle.r2num, 2 * s);
+  const mpz_class dx = scaled(p.x, e) * circle.den - nx;
+  const mpz_class dy = scaled(p.y, e) * circle.den - ny;
+  const mpz_class num = r2num - dx * dx - dy * dy;
+  // Value · scale² = num/den² · 2^(2e' + 2k).
+  return ratio_to_double(num, mpz_class(circle.den * circle.den),
+                         2L * e + 2L * circle.scale_exponent);
+}
+
+}  // namespace vcmm::geometry::internal

@@ -1,0 +1,82 @@
+// read_points_csv: formats accepted and every rejection with file and line in the message.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "vcmm/geometry/point_io.h"
+
+namespace {
+
+using vcmm::geometry::InvalidInput;
+using vcmm::geometry::PointTable;
+using vcmm::geometry::read_points_csv;
+
+PointTable read(const std::string& text) {
+  std::istringstream in(text);
+  return read_points_csv(in, "p.csv");
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    read(text);
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReadPointsCsv, ReadsXYWithHeaderCommentsAndBlankLines) {
+  const auto t = read("# ring\nx,y\n\n1.5, 2\n  -3e-3 ,4.25 # tail\n");
+  ASSERT_EQ(t.points.size(), 2u);
+  EXPECT_DOUBLE_EQ(t.points[0].x, 1.5);
+  EXPECT_DOUBLE_EQ(t.points[1].x, -3e-3);
+  EXPECT_DOUBLE_EQ(t.points[1].y, 4.25);
+  EXPECT_TRUE(t.z.empty());
+  EXPECT_EQ(t.line[0], 4u);
+  EXPECT_EQ(t.line[1], 5u);
+}
+
+TEST(ReadPointsCsv, ReadsXYZAndOtherSeparators) {
+  const auto t = read("1;2;3\n4;5;6\n");
+  ASSERT_EQ(t.points.size(), 2u);
+  EXPECT_DOUBLE_EQ(t.z[1], 6.0);
+  const auto w = read("1 2\n3\t4\r\n+5 6\n");
+  ASSERT_EQ(w.points.size(), 3u);
+  EXPECT_DOUBLE_EQ(w.points[2].x, 5.0);
+}
+
+TEST(ReadPointsCsv, KeepsFullDoublePrecision) {
+  const auto t = read("412.50003340112345,305.2500000000001\n");
+  EXPECT_EQ(t.points[0].x, 412.50003340112345);
+  EXPECT_EQ(t.points[0].y, 305.2500000000001);
+}
+
+TEST(ReadPointsCsv, RejectsEmptyInput) {
+  EXPECT_EQ(error_of(""), "p.csv: no points (empty input)");
+  EXPECT_EQ(error_of("# only a comment\nx,y\n"), "p.csv: no points (empty input)");
+}
+
+TEST(ReadPointsCsv, RejectsNonFiniteValuesWithLine) {
+  EXPECT_EQ(error_of("1,2\n3,nan\n"), "p.csv:2: field 2 is not finite ('nan')");
+  EXPECT_EQ(error_of("inf,2\n"), "p.csv:1: field 1 is not finite ('inf')");
+  EXPECT_EQ(error_of("1,2\n1e999,2\n"), "p.csv:2: field 1 is not finite ('1e999')");
+}
+
+TEST(ReadPointsCsv, RejectsGarbageAndWrongColumnCounts) {
+  EXPECT_EQ(error_of("1,2\n3,abc\n"), "p.csv:2: field 2 is not a number ('abc')");
+  EXPECT_EQ(error_of("1,2\n3\n"), "p.csv:2: expected 2 or 3 fields (x,y or x,y,z in mm), found 1");
+  EXPECT_EQ(error_of("1,2,3,4\n"), "p.csv:1: expected 2 or 3 fields (x,y or x,y,z in mm), found 4");
+  EXPECT_EQ(error_of("1,2\n1,2,3\n"), "p.csv:2: has 3 fields but the first data line has 2");
+  EXPECT_EQ(error_of("1,2\n,2\n"), "p.csv:2: field 1 is not a number ('')");
+}
+
+TEST(ReadPointsCsv, MissingFileIsAClearError) {
+  try {
+    vcmm::geometry::read_points_csv_file("/nonexistent/ring.csv");
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/ring.csv: cannot open file for reading");
+  }
+}
+
+}  // namespace

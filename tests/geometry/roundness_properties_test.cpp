@@ -1,0 +1,306 @@
+// tests/geometry/roundness_properties_test.cpp — property suites over regimes for the four
+// reference circles: lobed noisy rings (R = 85.5 mm, lobing 10-100 nm, noise 50 nm)
+// at n = 16, 360, 3600, centred at the origin and ~1.2 m away from it.
+//
+//  - invariance under exact transformations: translation, rotation by 90°, permutation.
+//    The profiles are quantised to multiples of 2⁻⁴⁰ mm (~1e-12 mm, far below the noise)
+//    so that a translation by a multiple of 2⁻⁴⁰ keeps every coordinate exact (|x| < 2¹³);
+//    the exact problems are then identical, so the exact fitters must return the same
+//    contact sets and values equal to a few ulps (LS, an iteration, to 1e-10 mm);
+//  - ordering: RONt(MZ) ≤ RONt(LS), RONt(MI), RONt(MC); r(MI) ≤ R(LS) ≤ R(MC);
+//  - every certificate passes verify() (MC always global);
+//  - evaluate_roundness equals the individual calls, and with the Gaussian filter its
+//    certificates verify against the filtered profile.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/test_profiles.h"
+#include "vcmm/geometry/certificate.h"
+#include "vcmm/geometry/gaussian_filter.h"
+#include "vcmm/geometry/least_squares.h"
+#include "vcmm/geometry/maximum_inscribed.h"
+#include "vcmm/geometry/minimum_circumscribed.h"
+#include "vcmm/geometry/minimum_zone.h"
+#include "vcmm/geometry/roundness.h"
+
+namespace vcmm::test {
+namespace {
+
+using namespace vcmm::geometry;
+
+constexpr int kQuantumExponent = -40;  // profiles on the 2⁻⁴⁰ mm grid
+
+double quantise(double v) { return std::ldexp(std::nearbyint(std::ldexp(v, -kQuantumExponent)), kQuantumExponent); }
+
+struct Profile {
+  std::string name;
+  std::vector<Point2> pts;
+};
+
+std::vector<Profile> profiles() {
+  std::vector<Profile> out;
+  for (std::size_t n : {16u, 360u, 3600u}) {
+    for (Point2 c : {Point2{0, 0}, Point2{1000.5, -733.25}}) {
+      auto pts = lobed_noisy_ring(n, 7 + n, 5e-5, c);
+      for (auto& p : pts) p = {quantise(p.x), quantise(p.y)};
+      std::ostringstream os;
+      os << "lobed_noisy_ring(n=" << n << ", seed=" << 7 + n << ", centre=(" << c.x << ", "
+         << c.y << "))";
+      out.push_back({os.str(), std::move(pts)});
+    }
+  }
+  return out;
+}
+
+struct Fits {
+  LeastSquaresCircle ls;
+  MinimumZoneCircle mz;
+  MaximumInscribedCircle mi;
+  MinimumCircumscribedCircle mc;
+};
+
+Fits fit_all(const std::vector<Point2>& pts) {
+  return {least_squares_circle(pts), minimum_zone_circle(pts), maximum_inscribed_circle(pts),
+          minimum_circumscribed_circle(pts)};
+}
+
+double ulp(double x) {
+  x = std::fabs(x);
+  return std::nextafter(x, 2 * x + 1) - x;
+}
+
+std::vector<std::size_t> mapped(const std::vector<std::size_t>& idx,
+                                const std::function<std::size_t(std::size_t)>& map) {
+  std::vector<std::size_t> out;
+  for (std::size_t i : idx) out.push_back(map(i));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::size_t> sorted(std::vector<std::size_t> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+/// b is the fit of the transformed profile: its centre must be map(a's centre), its
+/// contacts the images of a's, its lengths a's — to the few ulps the roundings allow.
+void expect_equivalent(const Fits& a, const Fits& b, const std::function<Point2(Point2)>& map,
+                       const std::function<std::size_t(std::size_t)>& index_map,
+                       const std::string& what) {
+  SCOPED_TRACE(what);
+  auto near_centre = [&](Point2 ca, Point2 cb, double radius, double ulps) {
+    const Point2 m = map(ca);
+    const double u = ulp(std::max({std::fabs(cb.x), std::fabs(cb.y), radius}));
+    EXPECT_LE(std::fabs(m.x - cb.x), ulps * u) << "centre x " << m.x << " vs " << cb.x;
+    EXPECT_LE(std::fabs(m.y - cb.y), ulps * u) << "centre y " << m.y << " vs " << cb.y;
+    return u;
+  };
+  // Exact fitters: centres within 4 ulp of the same exact point (+ rounding of the map).
+  {
+    const double u = near_centre(a.mz.center, b.mz.center, b.mz.outer_radius, 12);
+    EXPECT_EQ(mapped(a.mz.outer_contacts, index_map), sorted(b.mz.outer_contacts));
+    EXPECT_EQ(mapped(a.mz.inner_contacts, index_map), sorted(b.mz.inner_contacts));
+    EXPECT_NEAR(a.mz.outer_radius, b.mz.outer_radius, 16 * u);
+    EXPECT_NEAR(a.mz.inner_radius, b.mz.inner_radius, 16 * u);
+    EXPECT_NEAR(a.mz.ron.ront, b.mz.ron.ront, 32 * u);
+  }
+  {
+    const double u = near_centre(a.mi.center, b.mi.center, b.mi.radius, 12);
+    EXPECT_EQ(mapped(a.mi.contacts, index_map), sorted(b.mi.contacts));
+    EXPECT_NEAR(a.mi.radius, b.mi.radius, 16 * u);
+    EXPECT_NEAR(a.mi.ron.ront, b.mi.ron.ront, 32 * u);
+  }
+  {
+    const double u = near_centre(a.mc.center, b.mc.center, b.mc.radius, 12);
+    EXPECT_EQ(mapped(a.mc.contacts, index_map), sorted(b.mc.contacts));
+    EXPECT_NEAR(a.mc.radius, b.mc.radius, 16 * u);
+    EXPECT_NEAR(a.mc.ron.ront, b.mc.ron.ront, 32 * u);
+  }
+  // LS is an iteration (rounding differs with the frame): 1e-10 mm.
+  const Point2 ls = map(a.ls.center);
+  EXPECT_NEAR(ls.x, b.ls.center.x, 1e-10);
+  EXPECT_NEAR(ls.y, b.ls.center.y, 1e-10);
+  EXPECT_NEAR(a.ls.radius, b.ls.radius, 1e-10);
+  EXPECT_NEAR(a.ls.ron.ront, b.ls.ron.ront, 1e-10);
+}
+
+void expect_certificates_verify(const std::vector<Point2>& pts, const Fits& f) {
+  const auto vz = verify(pts, f.mz);
+  EXPECT_TRUE(vz.valid) << "MZ: " << vz.reason << "\n  argument: " << f.mz.certificate.argument;
+  const auto vi = verify(pts, f.mi);
+  EXPECT_TRUE(vi.valid) << "MI: " << vi.reason << "\n  argument: " << f.mi.certificate.argument;
+  const auto vc = verify(pts, f.mc);
+  EXPECT_TRUE(vc.valid) << "MC: " << vc.reason;
+  EXPECT_EQ(f.mc.certificate.optimality, Optimality::global);
+}
+
+class RoundnessProperties : public ::testing::TestWithParam<std::size_t> {
+ protected:
+  static const std::vector<Profile>& all() {
+    static const std::vector<Profile> p = profiles();
+    return p;
+  }
+  const Profile& profile() const { return all()[GetParam()]; }
+};
+
+TEST_P(RoundnessProperties, CertificatesVerifyAndCirclesAreOrdered) {
+  const Profile& p = profile();
+  SCOPED_TRACE(p.name);
+  const Fits f = fit_all(p.pts);
+  expect_certificates_verify(p.pts, f);
+  // Claims on closed, round profiles: MZ and MI are expected to prove global optimality.
+  EXPECT_EQ(f.mz.certificate.optimality, Optimality::global) << f.mz.certificate.argument;
+  EXPECT_EQ(f.mi.certificate.optimality, Optimality::global) << f.mi.certificate.argument;
+  const double tol = 1e-12;  // roundings of RONt about different centres
+  EXPECT_LE(f.mz.ron.ront, f.ls.ron.ront + tol);
+  EXPECT_LE(f.mz.ron.ront, f.mi.ron.ront + tol);
+  EXPECT_LE(f.mz.ron.ront, f.mc.ron.ront + tol);
+  EXPECT_LE(f.mi.radius, f.ls.radius);
+  EXPECT_LE(f.ls.radius, f.mc.radius);
+  EXPECT_LE(f.mz.inner_radius, f.mz.outer_radius);
+}
+
+TEST_P(RoundnessProperties, InvariantUnderExactTranslation) {
+  const Profile& p = profile();
+  const Point2 t{-512.125, 256.0625};
+  std::vector<Point2> moved;
+  for (const Point2& q : p.pts) moved.push_back({q.x + t.x, q.y + t.y});
+  for (std::size_t i = 0; i < moved.size(); ++i) {  // exactness of the translation
+    ASSERT_EQ(moved[i].x - t.x, p.pts[i].x);
+    ASSERT_EQ(moved[i].y - t.y, p.pts[i].y);
+  }
+  const Fits a = fit_all(p.pts), b = fit_all(moved);
+  expect_certificates_verify(moved, b);
+  expect_equivalent(a, b, [&](Point2 c) { return Point2{c.x + t.x, c.y + t.y}; },
+                    [](std::size_t i) { return i; }, p.name + " translated");
+}
+
+TEST_P(RoundnessProperties, InvariantUnderRotationBy90Degrees) {
+  const Profile& p = profile();
+  std::vector<Point2> turned;
+  for (const Point2& q : p.pts) turned.push_back({-q.y, q.x});
+  const Fits a = fit_all(p.pts), b = fit_all(turned);
+  expect_certificates_verify(turned, b);
+  expect_equivalent(a, b, [](Point2 c) { return Point2{-c.y, c.x}; },
+                    [](std::size_t i) { return i; }, p.name + " rotated by 90 degrees");
+}
+
+TEST_P(RoundnessProperties, InvariantUnderPermutation) {
+  const Profile& p = profile();
+  const std::size_t n = p.pts.size();
+  std::vector<std::size_t> perm(n);  // new index -> old index
+  for (std::size_t i = 0; i < n; ++i) perm[i] = i;
+  std::uint64_t s = 99;
+  for (std::size_t i = n; i > 1; --i)
+    std::swap(perm[i - 1], perm[static_cast<std::size_t>(uniform01(s) * static_cast<double>(i)) % i]);
+  std::vector<std::size_t> inverse(n);
+  for (std::size_t i = 0; i < n; ++i) inverse[perm[i]] = i;
+  std::vector<Point2> shuffled(n);
+  for (std::size_t i = 0; i < n; ++i) shuffled[i] = p.pts[perm[i]];
+  const Fits a = fit_all(p.pts), b = fit_all(shuffled);
+  expect_certificates_verify(shuffled, b);
+  expect_equivalent(a, b, [](Point2 c) { return c; },
+                    [&](std::size_t old_index) { return inverse[old_index]; },
+                    p.name + " permuted");
+}
+
+TEST_P(RoundnessProperties, EvaluateRoundnessWithAndWithoutFilter) {
+  const Profile& p = profile();
+  SCOPED_TRACE(p.name);
+  RoundnessRequest request;
+  const RoundnessEvaluation plain = evaluate_roundness(p.pts, request);
+  ASSERT_TRUE(plain.least_squares && plain.minimum_zone && plain.maximum_inscribed &&
+              plain.minimum_circumscribed);
+  EXPECT_EQ(plain.n_points, p.pts.size());
+  const Fits f = fit_all(p.pts);
+  EXPECT_EQ(plain.minimum_zone->outer_contacts, f.mz.outer_contacts);
+  EXPECT_EQ(plain.minimum_zone->inner_contacts, f.mz.inner_contacts);
+  EXPECT_EQ(plain.minimum_zone->ron.ront, f.mz.ron.ront);
+  EXPECT_EQ(plain.maximum_inscribed->contacts, f.mi.contacts);
+  EXPECT_EQ(plain.minimum_circumscribed->contacts, f.mc.contacts);
+  EXPECT_EQ(plain.least_squares->radius, f.ls.radius);
+
+  // Filtered: cut-off 15 UPR where the profile allows it (f_c ≤ n/2), else n/2 − 1.
+  const double cutoff = std::min(15.0, static_cast<double>(p.pts.size()) / 2 - 1);
+  request.filter_cutoff_upr = cutoff;
+  const RoundnessEvaluation filtered = evaluate_roundness(p.pts, request);
+  ASSERT_TRUE(filtered.filter_cutoff_upr.has_value());
+  EXPECT_EQ(*filtered.filter_cutoff_upr, cutoff);
+  const std::vector<Point2> fp = gaussian_filtered_profile(p.pts, cutoff).points;
+  ASSERT_EQ(fp.size(), p.pts.size());
+  ASSERT_TRUE(filtered.minimum_zone && filtered.maximum_inscribed &&
+              filtered.minimum_circumscribed && filtered.least_squares);
+  const auto vz = verify(fp, *filtered.minimum_zone);
+  EXPECT_TRUE(vz.valid) << vz.reason;
+  const auto vi = verify(fp, *filtered.maximum_inscribed);
+  EXPECT_TRUE(vi.valid) << vi.reason;
+  const auto vc = verify(fp, *filtered.minimum_circumscribed);
+  EXPECT_TRUE(vc.valid) << vc.reason;
+  EXPECT_LE(filtered.minimum_zone->ron.ront, filtered.least_squares->ron.ront + 1e-12);
+  // The filter is a positive-weight smoothing of the deviations about the LS centre: their
+  // peak-to-valley can only shrink, and the MZ zone is at most that.
+  EXPECT_LE(filtered.minimum_zone->ron.ront, plain.least_squares->ron.ront + 1e-12);
+}
+
+// Harder shapes: partial arcs (MI undefined there, MZ always has a finite minimum for
+// non-collinear data), sparse profiles with large form. Whatever the fitters claim must
+// verify; MI may refuse with UndefinedResult.
+TEST(RoundnessHardProfiles, CertificatesVerify) {
+  struct Shape {
+    const char* name;
+    RingSpec spec;
+  };
+  std::vector<Shape> shapes;
+  auto lobed = [](std::size_t n, double span, double radius, double form, double noise) {
+    RingSpec s;
+    s.n = n;
+    s.span = span;
+    s.radius = radius;
+    s.harmonics = {{2, form, 0.3}, {3, 0.6 * form, 1.1}, {5, 0.3 * form, 2.0}};
+    s.noise_sigma = noise;
+    s.angle_jitter = 0.3;
+    return s;
+  };
+  shapes.push_back({"arc 90 deg, n=360", lobed(360, std::numbers::pi / 2, 85.5, 1e-4, 5e-5)});
+  shapes.push_back({"arc 270 deg, n=360", lobed(360, 1.5 * std::numbers::pi, 85.5, 1e-4, 5e-5)});
+  shapes.push_back({"arc 0.2 rad, n=100", lobed(100, 0.2, 85.5, 1e-4, 5e-5)});
+  shapes.push_back({"sparse, large form, n=40", lobed(40, 0.0, 10.0, 0.5, 0.01)});
+  shapes.push_back({"sparse, large form, n=200", lobed(200, 0.0, 10.0, 0.8, 0.05)});
+  for (const Shape& shape : shapes) {
+    SCOPED_TRACE(shape.name);
+    const std::vector<Point2> pts = ring_profile(shape.spec);
+    const MinimumZoneCircle mz = minimum_zone_circle(pts);
+    const auto vz = verify(pts, mz);
+    EXPECT_TRUE(vz.valid) << vz.reason << "\n  argument: " << mz.certificate.argument;
+    const MinimumCircumscribedCircle mc = minimum_circumscribed_circle(pts);
+    const auto vc = verify(pts, mc);
+    EXPECT_TRUE(vc.valid) << vc.reason;
+    try {
+      const MaximumInscribedCircle mi = maximum_inscribed_circle(pts);
+      const auto vi = verify(pts, mi);
+      EXPECT_TRUE(vi.valid) << vi.reason << "\n  argument: " << mi.certificate.argument;
+    } catch (const UndefinedResult&) {
+      EXPECT_GT(shape.spec.span, 0.0) << "MI refused a closed profile";
+    }
+  }
+}
+
+std::string profile_name(const ::testing::TestParamInfo<std::size_t>& info) {
+  static const char* names[] = {"n16_origin",  "n16_far",  "n360_origin",
+                                "n360_far",    "n3600_origin", "n3600_far"};
+  return names[info.param];
+}
+
+INSTANTIATE_TEST_SUITE_P(LobedRings, RoundnessProperties, ::testing::Range<std::size_t>(0, 6),
+                         profile_name);
+
+}  // namespace
+}  // namespace vcmm::test

@@ -1,0 +1,137 @@
+// vcmm/errormodel/virtual_cmm.h — the virtual CMM: the five error sources as ordered stages,
+// one realisation of all of them (ErrorDraw), simulation of what the CMM reports, and the
+// correction of the known systematic part (docs/errormodel.md).
+//
+// Stages, applied in this order to each point p (workpiece coordinates, mm) with unit normal n
+// (material → air; probing direction d = −n; R = placement rotation, L = location):
+//   1 roughness    p ← p + r_i · n                     r_i ~ N(0, σ_rough²)
+//   2 temperature  p ← p · (1 + α (T − 20 °C))         the workpiece expands about its origin
+//   3 kinematic    w = L + R p (machine);  p ← p + Rᵀ (m(w) − w), m(w) the tip position the
+//                  machine reports when its tip truly is at w (measured_tip_positions; the
+//                  error functions are evaluated at the surface point, not the tip centre:
+//                  that changes the error by ≤ |∇e|·r_tip ≈ 1e-6 · 1.5 mm = 1.5 nm)
+//   4 probe        p ← p + (δr + D(R d)) · n           δr tip radius error, D directional error
+//   5 noise        p ← p + σ_mode · z_i                z_i ~ N(0, I₃)
+// Normals pass through unchanged: they are the probing directions the CMM used.
+//
+// Directional probe error, for a probing direction d = (dx, dy, dz) in machine coordinates:
+//   D(d) = Σ_k [ c_k Re((dx + i·dy)^k) + s_k Im((dx + i·dy)^k) ]
+// For horizontal probing (|d_xy| = 1, azimuth φ) this is the Fourier series Σ c_k cos kφ +
+// s_k sin kφ; in 3D it is the sectoral spherical-harmonic series sin^k θ · (c_k cos kφ +
+// s_k sin kφ) (θ polar angle from +Z), which vanishes for vertical probing.
+//
+// correct() inverts stages 4, 3, 2 (in that order) with the model's *estimated* values: the
+// nominal probe errors, the nominal kinematic errors evaluated at the measured positions
+// (tip_errors; exact inverse of stage 3), and the expansion with the nominal α and the
+// temperature *reading*. Roughness and noise are random and are not corrected. So one
+// Monte Carlo trial is  correct(simulate(best_estimate, draw_errors(...)));  with every
+// uncertainty and σ zero it returns its input to < 1e-12 mm (tests/errormodel/virtual_cmm_test).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "vcmm/errormodel/digital_model.h"
+#include "vcmm/errormodel/kinematic_errors.h"
+#include "vcmm/errormodel/measurement.h"
+#include "vcmm/errormodel/random_source.h"
+
+namespace vcmm::errormodel {
+
+/// The error sources, in stage order.
+enum class ErrorSource { roughness, temperature, kinematic, probe, noise };
+inline constexpr std::array<ErrorSource, 5> all_error_sources = {
+    ErrorSource::roughness, ErrorSource::temperature, ErrorSource::kinematic,
+    ErrorSource::probe, ErrorSource::noise};
+
+/// "roughness", "temperature", "kinematic", "probe", "noise".
+std::string_view to_string(ErrorSource source);
+std::optional<ErrorSource> error_source_from_string(std::string_view text);
+
+/// Which stages are switched on (all by default).
+struct Stages {
+  std::array<bool, 5> enabled = {true, true, true, true, true};
+
+  static constexpr Stages all() { return {}; }
+  static constexpr Stages none() { return {{false, false, false, false, false}}; }
+  static constexpr Stages only(ErrorSource s) {
+    Stages out = none();
+    out.enabled[static_cast<std::size_t>(s)] = true;
+    return out;
+  }
+  constexpr bool is_enabled(ErrorSource s) const { return enabled[static_cast<std::size_t>(s)]; }
+  constexpr Stages& set(ErrorSource s, bool on) {
+    enabled[static_cast<std::size_t>(s)] = on;
+    return *this;
+  }
+  friend constexpr bool operator==(const Stages&, const Stages&) = default;
+};
+
+/// One realisation of the probe errors (mm): fixed-size, no allocation.
+struct ProbeErrors {
+  double tip_radius_error_mm = 0.0;
+  std::array<double, max_probe_harmonic_order + 1> cos_mm{};  ///< index = order (0 unused)
+  std::array<double, max_probe_harmonic_order + 1> sin_mm{};
+  int max_order = 0;  ///< highest order evaluated, 0 … max_probe_harmonic_order (0: none)
+};
+
+/// The effective radius error δr + D(d) (mm) for a unit probing direction d in machine
+/// coordinates (formula in the file comment). Throws InvalidInput if probe.max_order is out of
+/// range. O(max_order).
+double probe_error_mm(const ProbeErrors& probe, const Eigen::Vector3d& probing_direction);
+
+/// One realisation of every error source for one measurement.
+struct ErrorDraw {
+  double temperature_c = reference_temperature_c;  ///< true workpiece temperature (°C)
+  double expansion_coefficient_per_k = 0.0;        ///< true α (1/K)
+  KinematicErrors kinematic;                       ///< true kinematic errors
+  ProbeErrors probe;                               ///< true probe errors
+  Eigen::VectorXd roughness_mm;  ///< N deviations along the normals (empty: stage off)
+  Eigen::Matrix3Xd noise_mm;     ///< 3×N noise vectors, workpiece axes (empty: stage off)
+};
+
+/// The estimated (nominal) values of every source for measurement `m`: T = the reading,
+/// α, kinematic and probe errors at their estimates, roughness and noise zero (sized N).
+/// simulate() with it adds exactly what correct() removes.
+ErrorDraw nominal_errors(const DigitalModel& model, const Measurement& m);
+
+/// Draws one realisation: T ~ N(reading, u_T²), α ~ N(α̂, u(α)²), kinematic errors by
+/// model.kinematics.draw(), probe coefficients ~ N(value, u²), roughness N(0, σ²) per point,
+/// noise N(0, σ_mode² I₃) per point. Sources whose stage is off keep their nominal value and
+/// consume no random numbers. Random numbers come in bulk calls, in stage order: temperature
+/// and probe scalars (one call), kinematic (its own call), roughness (N), noise (3N).
+/// `out` is reused: no allocation once sized. Validates `m` (InvalidInput). O(N).
+void draw_errors(const DigitalModel& model, const Measurement& m, RandomSource& rng,
+                 const Stages& stages, ErrorDraw& out);
+ErrorDraw draw_errors(const DigitalModel& model, const Measurement& m, RandomSource& rng,
+                      const Stages& stages = Stages::all());
+
+/// What the CMM would report for the workpiece surface `m` (the true, or best-estimate,
+/// points) under the errors `draw`, applying the enabled stages in order (file comment).
+/// The result keeps m's normals, placement, mode, temperature reading and stylus offset.
+/// Throws InvalidInput if `m` is invalid, `draw` lacks a per-point array an enabled stage
+/// needs (wrong size) or has a bad probe max_order; std::invalid_argument from the kinematic
+/// model if a point lies outside the machine's axis ranges or the kinematic realisation does
+/// not match the model. `formula`: the rigid-body formula of stage 3. Safe to call from
+/// several threads at once (work arrays are per thread). O(N); ~25 ns a point with
+/// first-order kinematics (docs/errormodel.md, "Performance").
+Measurement simulate(const Measurement& m, const DigitalModel& model, const ErrorDraw& draw,
+                     const Stages& stages = Stages::all(),
+                     Formula formula = Formula::first_order);
+/// As above, into `out` (its storage is reused; `out` may not be `m`).
+void simulate(const Measurement& m, const DigitalModel& model, const ErrorDraw& draw,
+              const Stages& stages, Formula formula, Measurement& out);
+
+/// Removes the known systematic part of the enabled stages from measured data (file
+/// comment): probe (nominal δr and D), kinematic (nominal errors, exact inverse), temperature
+/// (to 20 °C with the nominal α and the reading). Roughness and noise stages are ignored.
+/// Throws as simulate(). O(N).
+Measurement correct(const Measurement& measured, const DigitalModel& model,
+                    const Stages& stages = Stages::all(),
+                    Formula formula = Formula::first_order);
+void correct(const Measurement& measured, const DigitalModel& model, const Stages& stages,
+             Formula formula, Measurement& out);
+
+}  // namespace vcmm::errormodel

@@ -15,11 +15,15 @@
 // exist in n samples; they alias and the filter treats each pair k, n − k as harmonic
 // min(k, n − k)). This is done by a real FFT: no truncation of s, no end effects (the profile
 // is closed), error ~ε·log n of the profile's amplitude. Start angle and rotational sense do
-// not matter (H is real and even). Detection: successive directions about the filter centre
-// turn by 2π/n within 1e-6 of a step (relative), all in one rotational sense; the test uses
-// cross and dot products only (no arctangent). A closing point that repeats the first one
-// (within the same tolerance in angle: a closed scan) is detected: the two deviations at that
-// angle are averaged, the n − 1 distinct angles are filtered, and the repeated point gets the
+// not matter (H is real and even). Detection: every direction about the filter (LS) centre lies
+// within a quarter step of the grid θ_0 ± 2πj/n (cross and dot products with cached rotation
+// tables, no arctangent). Real scans are equiangular about the machine's nominal centre, not
+// about the LS centre, so their angles sit off the grid by up to ~e/R (eccentricity e); the FFT
+// result is kept only when the first-order effect of that displacement, 2·δ_max·max|w'|, is at
+// most 1e-3 of the filtered peak-to-valley (or 1e-10 mm) — see grid_error_is_negligible —
+// otherwise the nonuniform path below is used. A closing point that repeats the first one
+// (within a quarter step in angle: a closed scan) is detected: the two deviations at that angle
+// are averaged, the n − 1 distinct angles are filtered, and the repeated point gets the
 // filtered value of the first.
 //
 // Uneven spacing (the nonuniform path). ISO 16610-21 defines the filter as a convolution
@@ -589,47 +593,69 @@ struct Rays {
   Eigen::ArrayXd deviation, filtered, scratch;
 };
 
-/// True when rays 0, …, count−1 turn by 2π/count (within 1e-6 of a step, relative) from each
-/// to the next and from the last back to the first, all in one rotational sense. With
-/// a × b = r_a r_b sin Δ and a · b = r_a r_b cos Δ, rotating the turn back by the expected
-/// step leaves r_a r_b (sin, cos) of the residual angle, which must be (tiny, positive).
-bool is_equiangular(Rays& v, Eigen::Index count) {
-  constexpr double kRelativeTolerance = 1e-6;
+/// Largest angular position error (rad) of rays 0, …, count−1 against the equiangular grid
+/// θ_j = θ_0 + σ·2πj/count (σ = ±1, the rotational sense of rays 0 → 1), or +∞ when some ray
+/// is more than a quarter step off its grid position (then the samples are not in equiangular
+/// order at all). Ray j is rotated back by σ·2πj/count with cached cos/sin tables and compared
+/// with ray 0 by cross and dot products (no arctangent): sin δ_j = (r_0 × r_j') / (|r_0||r_j|).
+double max_grid_position_error(Rays& v, Eigen::Index count) {
+  thread_local Eigen::Index table_size = 0;
+  thread_local Eigen::ArrayXd cos_table, sin_table;
   const double step = 2 * kPi / static_cast<double>(count);
-  const double cs = std::cos(step), sn = std::sin(step);
-  const double max_sin_error = std::sin(kRelativeTolerance * step);
-  const auto residual_ok = [&](double ax, double ay, double bx, double by, double rab,
-                               double sense) {
-    const double cross = ax * by - ay * bx, dot = ax * bx + ay * by;
-    const double err_sin = cross * cs - sense * dot * sn;
-    const double err_cos = dot * cs + sense * cross * sn;
-    return err_cos > 0.0 && std::fabs(err_sin) <= max_sin_error * rab;
-  };
+  if (table_size != count) {
+    cos_table.resize(count);
+    sin_table.resize(count);
+    for (Eigen::Index j = 0; j < count; ++j) {
+      cos_table[j] = std::cos(step * static_cast<double>(j));
+      sin_table[j] = std::sin(step * static_cast<double>(j));
+    }
+    table_size = count;
+  }
   const double sense = v.x[0] * v.y[1] - v.y[0] * v.x[1] >= 0.0 ? 1.0 : -1.0;
-  // The wrap from the last ray back to the first.
-  if (!residual_ok(v.x[count - 1], v.y[count - 1], v.x[0], v.y[0], v.r[count - 1] * v.r[0], sense))
-    return false;
-  // Consecutive pairs: one vectorised reduction of max(|sin| − bound, −cos), which is < 0
-  // exactly when every pair passes (up to the measure-zero case |sin| = bound).
-  const Eigen::Index m = count - 1;
-  const auto ax = v.x.head(m), ay = v.y.head(m), bx = v.x.segment(1, m), by = v.y.segment(1, m);
-  const auto cross = ax * by - ay * bx;
-  const auto dot = ax * bx + ay * by;
-  const auto err_sin = cross * cs - (sense * sn) * dot;
-  const auto err_cos = dot * cs + (sense * sn) * cross;
-  const auto bound = max_sin_error * (v.r.head(m) * v.r.segment(1, m));
-  v.scratch.head(m) = (err_sin.abs() - bound).max(-err_cos);
-  return v.scratch.head(m).maxCoeff() < 0.0;
+  const auto x = v.x.head(count), y = v.y.head(count);
+  const auto c = cos_table.head(count);
+  const auto sn = sense * sin_table.head(count);
+  const auto xr = x * c + y * sn;   // ray j rotated by −σ·2πj/count
+  const auto yr = y * c - x * sn;
+  const auto norm = v.r[0] * v.r.head(count);
+  const auto sin_delta = (v.x[0] * yr - v.y[0] * xr) / norm;
+  const auto cos_delta = (v.x[0] * xr + v.y[0] * yr) / norm;
+  v.scratch.head(count) = sin_delta.abs();
+  const double max_sin = v.scratch.head(count).maxCoeff();
+  v.scratch.head(count) = cos_delta;
+  const double min_cos = v.scratch.head(count).minCoeff();
+  if (!(min_cos > 0.0) || !(max_sin <= std::sin(0.25 * step)))
+    return std::numeric_limits<double>::infinity();
+  return std::asin(max_sin);
+}
+
+/// Accepts the FFT result of samples whose angles are off the equiangular grid by at most
+/// `max_error` (rad). Treating a sample at θ_j + δ_j as if it were at θ_j changes the input by
+/// d'(θ_j)·δ_j to first order, and the filter (a positive kernel of unit mass) does not enlarge
+/// it; d' is the slope of the form, estimated from the filtered profile w (noise rides with its
+/// sample and is not displaced). Accepted when 2·δ_max·max|w'| — a factor 2 of margin on the
+/// first-order estimate — is at most 1e-3 of the filtered peak-to-valley or 1e-10 mm, so the
+/// FFT path never changes RONt by more than about 0.1 %; otherwise the caller uses the
+/// nonuniform path, which takes the true angles.
+bool grid_error_is_negligible(const Eigen::ArrayXd& w, Eigen::Index count, double max_error) {
+  if (max_error == 0.0) return true;
+  if (!std::isfinite(max_error)) return false;
+  const double step = 2 * kPi / static_cast<double>(count);
+  double max_slope = std::abs(w[0] - w[count - 1]) / step;
+  for (Eigen::Index j = 1; j < count; ++j)
+    max_slope = std::max(max_slope, std::abs(w[j] - w[j - 1]) / step);
+  const double range = w.head(count).maxCoeff() - w.head(count).minCoeff();
+  return 2.0 * max_error * max_slope <= std::max(1e-3 * range, 1e-10);
 }
 
 /// True when the last ray points the same way as the first (a repeated closing point), within
-/// the same relative tolerance of a step of 2π/count.
+/// a quarter of a step of 2π/count.
 bool repeats_first_direction(const Rays& v, Eigen::Index count) {
   const double step = 2 * kPi / static_cast<double>(count);
   const Eigen::Index last = v.x.size() - 1;
   const double cross = v.x[last] * v.y[0] - v.y[last] * v.x[0];
   const double dot = v.x[last] * v.x[0] + v.y[last] * v.y[0];
-  return dot > 0.0 && std::fabs(cross) <= std::sin(1e-6 * step) * (v.r[last] * v.r[0]);
+  return dot > 0.0 && std::fabs(cross) <= std::sin(0.25 * step) * (v.r[last] * v.r[0]);
 }
 
 }  // namespace
@@ -655,7 +681,8 @@ std::vector<double> gaussian_filter_closed(std::span<const double> deviations,
   return out;
 }
 
-FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr) {
+FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
+                                          FilterPathChoice choice) {
   constexpr const char* kCaller = "gaussian_filtered_profile";
   validate_profile(points, 8, kCaller);
   check_cutoff(kCaller, cutoff_upr);
@@ -695,17 +722,26 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
   }
   v.deviation = v.r - ls.radius;  // radial deviations d_i, finite by construction
 
-  if (is_equiangular(v, count)) {
-    out.path = FilterPath::fft;
+  bool done = false;
+  if (choice == FilterPathChoice::nonuniform) {
+    // the caller asked for the convolution with the true angles
+  } else if (const double err = max_grid_position_error(v, count); std::isfinite(err)) {
     plan_for(n).apply(v.deviation.data(), v.filtered.data(), cutoff_upr);
-  } else if (n >= 9 && repeats_first_direction(v, count - 1) && is_equiangular(v, count - 1)) {
+    done = grid_error_is_negligible(v.filtered, count, err);
+  } else if (n >= 9 && repeats_first_direction(v, count - 1)) {
     // A closed scan repeating its first point: average the two deviations at that angle,
     // filter the n − 1 distinct angles, give the repeat the value of the first.
+    if (const double e2 = max_grid_position_error(v, count - 1); std::isfinite(e2)) {
+      const double d0 = v.deviation[0];
+      v.deviation[0] = 0.5 * (d0 + v.deviation[count - 1]);
+      plan_for(n - 1).apply(v.deviation.data(), v.filtered.data(), cutoff_upr);
+      v.deviation[0] = d0;
+      v.filtered[count - 1] = v.filtered[0];
+      done = grid_error_is_negligible(v.filtered, count - 1, e2);
+    }
+  }
+  if (done) {
     out.path = FilterPath::fft;
-    v.scratch.head(count - 1) = v.deviation.head(count - 1);
-    v.scratch[0] = 0.5 * (v.deviation[0] + v.deviation[count - 1]);
-    plan_for(n - 1).apply(v.scratch.data(), v.filtered.data(), cutoff_upr);
-    v.filtered[count - 1] = v.filtered[0];
   } else {
     out.path = FilterPath::nonuniform;
     std::vector<double> angle(n), dev(v.deviation.data(), v.deviation.data() + n);

@@ -1,4 +1,4 @@
-// least_squares.cpp — the geometric least-squares (LS) circle, ISO 12181-1 3.4.1 (LSCI).
+// least_squares.cpp — the geometric least-squares (LS) circle, ISO 12181-1 (LSCI).
 //
 // Notation. Points p_i (i = 1..n), centre c, radius R, distances r_i(c) = |p_i − c|, unit
 // directions u_i = (p_i − c) / r_i, residuals e_i = r_i − R. The LS circle minimises

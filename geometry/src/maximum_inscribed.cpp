@@ -1,4 +1,4 @@
-// maximum_inscribed.cpp — the maximum-inscribed circle (MICI, ISO 12181-1 3.4.4).
+// maximum_inscribed.cpp — the maximum-inscribed circle (MICI, ISO 12181-1).
 //
 // Definition implemented
 //   r(c) = min_i |c − p_i| (radius of the largest circle centred at c with no point strictly

@@ -1,4 +1,4 @@
-// minimum_circumscribed.cpp — the minimum-circumscribed circle (MCCI, ISO 12181-1 3.4.3).
+// minimum_circumscribed.cpp — the minimum-circumscribed circle (MCCI, ISO 12181-1).
 //
 // Notation
 //   p_0 … p_{n−1}  input points (doubles, taken as exact rationals)

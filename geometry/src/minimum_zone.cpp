@@ -1,4 +1,4 @@
-// minimum_zone.cpp — the minimum-zone (MZ) reference circles, ISO 12181-1 3.4.2 (MZCI):
+// minimum_zone.cpp — the minimum-zone (MZ) reference circles, ISO 12181-1 (MZCI):
 // fast exchange path, exact certificate and global-optimality proof.
 //
 // ── Notation ──────────────────────────────────────────────────────────────────────────────

@@ -1,4 +1,4 @@
-// roundness_parameters.cpp — RONt, RONp, RONv, RONq (ISO 12181-1:2011, 3.3) of a profile about
+// roundness_parameters.cpp — RONt, RONp, RONv, RONq (ISO 12181-1:2011) of a profile about
 // a given reference circle (centre c, radius R_ref).
 //
 // d_i = |p_i − c| − R_ref, with p_i − c formed first (coordinates relative to the centre), so a

@@ -21,6 +21,7 @@ using vcmm::geometry::FilteredProfile;
 using vcmm::geometry::FilterPath;
 using vcmm::geometry::gaussian_filter_closed;
 using vcmm::geometry::gaussian_filtered_profile;
+using vcmm::geometry::FilterPathChoice;
 using vcmm::geometry::InvalidInput;
 using vcmm::geometry::kStandardCutoffsUpr;
 using vcmm::geometry::Point2;
@@ -266,7 +267,8 @@ TEST(GaussianFilteredProfile, PerfectCirclePassesUnchangedOnBothPaths) {
     spec.center = {-800.0, 650.0};
     spec.angle_jitter = jitter;
     const auto pts = ring_profile(spec);
-    const FilteredProfile f = gaussian_filtered_profile(pts, 150);
+    const FilteredProfile f = gaussian_filtered_profile(
+        pts, 150, jitter > 0 ? FilterPathChoice::nonuniform : FilterPathChoice::automatic);
     EXPECT_EQ(f.path, jitter > 0 ? FilterPath::nonuniform : FilterPath::fft);
     for (std::size_t i = 0; i < pts.size(); ++i) {
       EXPECT_NEAR(f.points[i].x, pts[i].x, 1e-12);
@@ -305,9 +307,27 @@ TEST(GaussianFilteredProfile, PathDetectionAnyStartAndSenseAndClosingPoint) {
   EXPECT_NEAR(fcl.points.back().y, fcl.points.front().y, 1e-12);
   EXPECT_LT(error_against_analytic(closed, fcl, 30, 1e-3, 50, phase0), 1e-12);
 
-  // A spacing error of 1e-4 of a step breaks equiangularity (tolerance 1e-6).
-  RingSpec spec = single_harmonic_ring(720, 30, 1e-3, 1e-4);
+  // Samples off the grid: a small displacement whose first-order effect on the filtered
+  // profile stays below 1e-3 of its peak-to-valley keeps the FFT path, and agrees with the
+  // nonuniform path to that order; a large one (±0.2 step on a steep 30-lobe profile) does not.
+  const auto slight = ring_profile(single_harmonic_ring(720, 30, 1e-3, 1e-4));
+  const FilteredProfile fs = gaussian_filtered_profile(slight, 50);
+  EXPECT_EQ(fs.path, FilterPath::fft);
+  const FilteredProfile fsn = gaussian_filtered_profile(slight, 50, FilterPathChoice::nonuniform);
+  for (std::size_t i = 0; i < slight.size(); ++i)
+    EXPECT_NEAR(fs.points[i].x, fsn.points[i].x, 1e-3 * 2e-3) << i;
+  RingSpec spec = single_harmonic_ring(720, 30, 1e-3, 0.4);
   EXPECT_EQ(gaussian_filtered_profile(ring_profile(spec), 50).path, FilterPath::nonuniform);
+  // A 171 mm ring (200 nm of 5-lobe form) scanned equiangularly about a point 2 µm from its
+  // centre, as a CMM scan about a slightly misaligned nominal centre: still the FFT path.
+  std::vector<Point2> ecc_pts;
+  for (int i = 0; i < 3600; ++i) {
+    const double t = 2 * kPi * i / 3600.0, e = 2e-3;
+    const double rho = 85.5 + 1e-4 * std::cos(5 * t);
+    const double d = e * std::cos(t) + std::sqrt(rho * rho - e * e * std::sin(t) * std::sin(t));
+    ecc_pts.push_back({d * std::cos(t), d * std::sin(t)});
+  }
+  EXPECT_EQ(gaussian_filtered_profile(ecc_pts, 50).path, FilterPath::fft);
 }
 
 // The nonuniform path (trapezoidal quadrature of the convolution integral) against the analytic
@@ -325,7 +345,7 @@ TEST(GaussianFilteredProfile, NonuniformPathMatchesAnalyticFilteredProfile) {
           SCOPED_TRACE("n " + std::to_string(n) + ", cut-off " + std::to_string(fc) +
                        ", jitter " + std::to_string(jitter) + ", harmonic " + std::to_string(k));
           const auto pts = ring_profile(single_harmonic_ring(n, k, amplitude, jitter));
-          const FilteredProfile f = gaussian_filtered_profile(pts, fc);
+          const FilteredProfile f = gaussian_filtered_profile(pts, fc, FilterPathChoice::nonuniform);
           EXPECT_EQ(f.path, FilterPath::nonuniform);
           const double h_over_width = (2 * kPi / static_cast<double>(n)) / (kAlpha * 2 * kPi / fc);
           const double bound = 8.0 * jitter * h_over_width * h_over_width * amplitude + 1e-12;
@@ -349,7 +369,7 @@ TEST(GaussianFilteredProfile, EquiangularAndNonuniformPathsAgree) {
   const auto even = ring_profile(single_harmonic_ring(3600, 50, amplitude, 0.0));
   const auto jittered = ring_profile(single_harmonic_ring(3600, 50, amplitude, 1e-4));
   const FilteredProfile fe = gaussian_filtered_profile(even, 50);
-  const FilteredProfile fj = gaussian_filtered_profile(jittered, 50);
+  const FilteredProfile fj = gaussian_filtered_profile(jittered, 50, FilterPathChoice::nonuniform);
   ASSERT_EQ(fe.path, FilterPath::fft);
   ASSERT_EQ(fj.path, FilterPath::nonuniform);
   const auto de = filtered_deviations(fe), dj = filtered_deviations(fj);

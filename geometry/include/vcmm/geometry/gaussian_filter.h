@@ -23,6 +23,12 @@ enum class FilterPath {
   nonuniform,   ///< uneven spacing: weighted convolution with quadrature weights
 };
 
+/// Which path gaussian_filtered_profile may take.
+enum class FilterPathChoice {
+  automatic,   ///< FFT when the samples are on an equiangular grid (see below), else nonuniform
+  nonuniform,  ///< always the convolution with the true angles (for cross-checks)
+};
+
 struct FilteredProfile {
   /// Filtered points, same count and order as the input: point i lies on the ray from the
   /// filter centre through input point i, at the filtered radius.
@@ -33,13 +39,17 @@ struct FilteredProfile {
 };
 
 /// Gaussian filter of a closed profile's radial deviations (about its LS centre).
-/// Equiangular data (spacing within 1e-6 of 2π/n, in angular order) is filtered exactly by
-/// FFT; other data by direct convolution with the wrapped weighting function and
-/// trapezoidal quadrature weights, normalised so a constant deviation passes unchanged.
+/// Samples whose directions lie on an equiangular grid (in angular order, any start angle,
+/// either sense; real scans sit slightly off the grid about the LS centre) are filtered by
+/// FFT with the exact transmission, kept when the grid displacement's first-order effect is
+/// below 1e-3 of the filtered peak-to-valley; other data by direct convolution with the
+/// wrapped weighting function (truncated at ±4 α λ_c) and trapezoidal quadrature weights,
+/// normalised so a constant deviation passes unchanged. A repeated closing point is detected.
 /// Preconditions (InvalidInput): ≥ 8 finite points, cut-off in (0, n/2], and the profile
 /// closed: it must go once round its centre with no angular gap wider than λ_c / 2.
-/// Complexity: O(n log n) (FFT) or O(n · m) with m points under ±3 α λ_c.
-FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr);
+/// Complexity: O(n log n) (FFT) or O(n · m) with m points under ±4 α λ_c.
+FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
+                                          FilterPathChoice choice = FilterPathChoice::automatic);
 
 /// Filters an equiangular closed sequence of radial deviations (any unit) by the exact
 /// transmission H(k). Precondition: ≥ 2 finite values, cut-off > 0 (InvalidInput).

@@ -15,7 +15,10 @@ namespace vcmm::geometry {
 struct MaximumInscribedCircle {
   Point2 center;        ///< few ulps from the exact rational centre (a Voronoi vertex)
   double radius = 0.0;  ///< few ulps from the exact value
-  /// 3 contact indices, the exact centre strictly inside their triangle.
+  /// 3 contact indices whose closed triangle contains the exact centre. The centre lies on
+  /// an edge only when 4 or more points share the circle (e.g. a square); another profile
+  /// point on the circle then lies strictly beyond that edge, so the contacts still surround
+  /// the centre (verify() checks this).
   std::vector<std::size_t> contacts;
   RoundnessParameters ron;  ///< about (center, radius): RONv = 0, RONt = RONp
   Certificate certificate;
@@ -23,7 +26,7 @@ struct MaximumInscribedCircle {
 
 /// Largest circle with no profile point inside it and its centre inside the profile's
 /// convex hull. The optimum is a nearest-point Voronoi vertex with its three contacts
-/// around it. Fast path warm-started at LS on the inner candidates, confirmed on all
+/// around it. Fast path from an algebraic (Kåsa) centre estimate on the inner candidates, confirmed on all
 /// points; Delaunay-based exhaustive method as fallback.
 /// Preconditions: ≥ 3 finite points, not collinear (InvalidInput). Throws UndefinedResult
 /// when the largest empty circle in the hull is not surrounded by its contacts (partial

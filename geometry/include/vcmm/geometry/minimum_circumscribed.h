@@ -22,8 +22,8 @@ struct MinimumCircumscribedCircle {
 };
 
 /// Smallest enclosing circle. Welzl / move-to-front with exact predicates on the support
-/// points (no constructed circle is ever tested), run on the candidates outside a circle
-/// from the LS fit and confirmed on all points.
+/// points (no constructed circle is ever tested), run on per-sector candidates around an algebraic
+/// (Kåsa) centre estimate and confirmed on all points (violators join and it repeats).
 /// Preconditions: ≥ 2 finite points, not all identical (InvalidInput).
 /// Complexity: expected O(n).
 MinimumCircumscribedCircle minimum_circumscribed_circle(std::span<const Point2> points);

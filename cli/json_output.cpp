@@ -28,6 +28,18 @@ void put_certificate(json& j, std::span<const g::Point2> profile, const Circle& 
   if (!v.valid) j["verification_failure"] = v.reason;
 }
 
+/// MI and MC: one radius, a flat contact list and a certificate.
+template <class Circle>
+json single_radius_json(std::span<const g::Point2> profile, const Circle& c) {
+  json j;
+  j["center"] = {c.center.x, c.center.y};
+  j["radius"] = c.radius;
+  put_ron(j, c.ron);
+  j["contacts"] = c.contacts;
+  put_certificate(j, profile, c);
+  return j;
+}
+
 }  // namespace
 
 nlohmann::json to_json(std::span<const g::Point2> profile, const g::RoundnessEvaluation& e) {
@@ -58,26 +70,9 @@ nlohmann::json to_json(std::span<const g::Point2> profile, const g::RoundnessEva
     put_certificate(j, profile, c);
     out["MZ"] = j;
   }
-  if (e.maximum_inscribed) {
-    const auto& c = *e.maximum_inscribed;
-    json j;
-    j["center"] = {c.center.x, c.center.y};
-    j["radius"] = c.radius;
-    put_ron(j, c.ron);
-    j["contacts"] = c.contacts;
-    put_certificate(j, profile, c);
-    out["MI"] = j;
-  }
-  if (e.minimum_circumscribed) {
-    const auto& c = *e.minimum_circumscribed;
-    json j;
-    j["center"] = {c.center.x, c.center.y};
-    j["radius"] = c.radius;
-    put_ron(j, c.ron);
-    j["contacts"] = c.contacts;
-    put_certificate(j, profile, c);
-    out["MC"] = j;
-  }
+  if (e.maximum_inscribed) out["MI"] = single_radius_json(profile, *e.maximum_inscribed);
+  if (e.minimum_circumscribed)
+    out["MC"] = single_radius_json(profile, *e.minimum_circumscribed);
   return out;
 }
 

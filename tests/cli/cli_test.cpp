@@ -1,6 +1,5 @@
 // The `vcmm roundness` contract (docs/cli.md): JSON keys, exit codes, messages, atomic output.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -9,31 +8,15 @@
 #include <sstream>
 #include <string>
 
+#include "support/cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-fs::path scratch_dir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("vcmm_cli_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using vcmm::test::CliRun;
+using vcmm::test::scratch_dir;
+using vcmm::test::slurp;
 
 fs::path write_scratch(const std::string& name, const std::string& content) {
   const fs::path p = scratch_dir() / name;
@@ -42,17 +25,7 @@ fs::path write_scratch(const std::string& name, const std::string& content) {
 }
 
 CliRun run(const std::string& args, const std::string& stdin_file = "") {
-  const fs::path out = scratch_dir() / "stdout.txt";
-  const fs::path err = scratch_dir() / "stderr.txt";
-  std::string cmd = std::string("'") + VCMM_EXE + "' " + args + " >'" + out.string() + "' 2>'" +
-                    err.string() + "'";
-  if (!stdin_file.empty()) cmd += " <'" + stdin_file + "'";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return vcmm::test::run_command(VCMM_EXE, args, stdin_file);
 }
 
 const std::string kScan = std::string(VCMM_SOURCE_DIR) + "/examples/profiles/ring_171mm_scan.csv";

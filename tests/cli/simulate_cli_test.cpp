@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/cli_run.h"
 #include "vcmm/errormodel/measurement.h"
 
 namespace {
@@ -19,34 +20,11 @@ namespace fs = std::filesystem;
 using vcmm::errormodel::Measurement;
 using vcmm::errormodel::ProbingMode;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string err;
-};
+using vcmm::test::CliRun;
+using vcmm::test::scratch_dir;
+using vcmm::test::slurp;
 
-fs::path scratch_dir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("vcmm_simulate_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-CliRun run(const std::string& args) {
-  const fs::path err = scratch_dir() / "stderr.txt";
-  const std::string cmd = std::string("'") + VCMM_EXE + "' " + args + " >/dev/null 2>'" +
-                          err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(err)};
-}
+CliRun run(const std::string& args) { return vcmm::test::run_command(VCMM_EXE, args); }
 
 const std::string kModel = std::string(VCMM_SOURCE_DIR) + "/examples/cmm_model.json";
 

@@ -267,14 +267,38 @@ int orientation_filtered(Point2 a, Point2 b, const FilteredCircle& c) {
 
 // ---- reported doubles --------------------------------------------------------------------
 
+/// One ulp of |x|; a non-finite x counts as the largest double, so tolerances stay finite
+/// (an exact value beyond the double range can never match a reported double anyway).
 double ulp_of(double x) {
   x = std::fabs(x);
+  if (!std::isfinite(x)) x = std::numeric_limits<double>::max();
   return std::nextafter(x, std::numeric_limits<double>::infinity()) - x;
 }
 
+/// sqrt(q) for q ≥ 0 without overflow or underflow: q is scaled by 4^∓k until it converts to
+/// a normal double (coordinates near 1e±180 give R² near 1e±360), then the root is scaled
+/// back by 2^±k.
+double sqrt_of(const Q& q) {
+  if (CGAL::sign(q) <= 0) return 0.0;
+  Q s = q;
+  int k = 0;
+  while (!std::isfinite(CGAL::to_double(s))) {
+    s /= Q(4);
+    ++k;
+  }
+  while (CGAL::to_double(s) < std::numeric_limits<double>::min()) {
+    s *= Q(4);
+    --k;
+  }
+  return std::ldexp(std::sqrt(CGAL::to_double(s)), k);
+}
+
+/// The magnitude that reported doubles are compared at: max(|c_x|, |c_y|, R), clamped to the
+/// double range.
 double scale_of(const QPoint& c, const Q& radius2) {
-  return std::max({std::fabs(CGAL::to_double(c.x)), std::fabs(CGAL::to_double(c.y)),
-                   std::sqrt(std::max(0.0, CGAL::to_double(radius2)))});
+  const double s = std::max({std::fabs(CGAL::to_double(c.x)), std::fabs(CGAL::to_double(c.y)),
+                             sqrt_of(radius2)});
+  return std::isfinite(s) ? s : std::numeric_limits<double>::max();
 }
 
 std::string describe(double v) {

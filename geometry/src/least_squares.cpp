@@ -147,10 +147,21 @@ class Fitter {
     const double cxz = m_xz - m_x * gz, cyz = m_yz - m_y * gz;
     const double det = cxx * cyy - cxy * cxy;
     if (!(det > 0.0) || !std::isfinite(det)) {
-      // validate_profile has excluded exactly collinear data; this is its floating-point twin.
+      // validate_profile has excluded exactly collinear data; this is its floating-point twin,
+      // or a profile whose size puts its cubic moments outside the double range (~1e±100).
+      double extent = 0.0;
+      for (Eigen::Index i = 0; i < n_; ++i)
+        extent = std::max({extent, std::fabs(x_[i]), std::fabs(y_[i])});
       std::ostringstream os;
-      os << kCaller << ": points are numerically collinear (algebraic-fit determinant "
-         << det << "); no circle can be fitted in double precision";
+      os << kCaller << ": no circle can be fitted in double precision: ";
+      if (!std::isfinite(det) && extent > 1.0)
+        os << "the profile's extent (" << extent
+           << ") is too large, its algebraic-fit moments overflow";
+      else if (extent < 1.0 && det == 0.0)
+        os << "the profile's extent (" << extent
+           << ") is too small, its algebraic-fit moments underflow";
+      else
+        os << "the points are numerically collinear (algebraic-fit determinant " << det << ")";
       throw InvalidInput(os.str());
     }
     // Centred normal equations [cxx cxy; cxy cyy] (2a, 2b) = (cxz, cyz). As z is not

@@ -1242,9 +1242,54 @@ MinimumZoneCircle result_of(std::span<const Point2> points, const Certified& cer
 
 }  // namespace
 
+namespace {
+MinimumZoneCircle minimum_zone_unscaled(std::span<const Point2> points,
+                                        const MinimumZoneOptions& options);
+
+/// Binary exponent band in which every double quantity of the result (R², r², |p − c|²,
+/// their sums over n points) stays normal and finite: lengths up to 2^±400 (~1e±120).
+constexpr int kSafeExponent = 400;
+
+bool in_safe_band(double v) {
+  const int e = v != 0.0 ? std::ilogb(v) : 0;
+  return std::isfinite(v) && e >= -kSafeExponent && e <= kSafeExponent;
+}
+}  // namespace
+
+// Power-of-two scaling is exact and commutes with every exact decision and with correct
+// rounding, so data outside the safe band are solved as 2^−e·p and the lengths scaled back.
+// Deciding costs O(1) on ordinary data (no extra pass over the points, which would be
+// memory-bound at large n): the first point's magnitude, and afterwards the result's own
+// lengths; the full magnitude scan runs only when one of them is out of band.
 MinimumZoneCircle minimum_zone_circle(std::span<const Point2> points,
                                       const MinimumZoneOptions& options) {
   validate_profile(points, 3, kCaller);
+  if (in_safe_band(std::max(std::fabs(points[0].x), std::fabs(points[0].y)))) {
+    MinimumZoneCircle mz = minimum_zone_unscaled(points, options);
+    if (in_safe_band(mz.outer_radius) && in_safe_band(mz.inner_radius) &&
+        std::isfinite(mz.ron.ronq))
+      return mz;
+  }
+  double magnitude = 0.0;
+  for (const Point2& p : points) magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y)});
+  const int e = std::ilogb(magnitude);
+  std::vector<Point2> scaled(points.begin(), points.end());
+  for (Point2& p : scaled) p = {std::ldexp(p.x, -e), std::ldexp(p.y, -e)};
+  MinimumZoneCircle mz = minimum_zone_unscaled(scaled, options);
+  mz.center = {std::ldexp(mz.center.x, e), std::ldexp(mz.center.y, e)};
+  mz.inner_radius = std::ldexp(mz.inner_radius, e);
+  mz.outer_radius = std::ldexp(mz.outer_radius, e);
+  mz.ron = {std::ldexp(mz.ron.ront, e), std::ldexp(mz.ron.ronp, e), std::ldexp(mz.ron.ronv, e),
+            std::ldexp(mz.ron.ronq, e)};
+  mz.certificate.region_radius = std::ldexp(mz.certificate.region_radius, e);
+  mz.certificate.argument += " (solved on the data scaled by 2^" + std::to_string(-e) +
+                             ", exact; lengths scaled back)";
+  return mz;
+}
+
+namespace {
+MinimumZoneCircle minimum_zone_unscaled(std::span<const Point2> points,
+                                        const MinimumZoneOptions& options) {
   if (options.method == MinimumZoneMethod::overlay)
     return internal::minimum_zone_overlay(points);
   if (const auto t = cocircular_triple(points))
@@ -1312,5 +1357,6 @@ MinimumZoneCircle minimum_zone_circle(std::span<const Point2> points,
                    "profile is too large to exhaust)";
   return result_of(points, cert, std::move(local));
 }
+}  // namespace
 
 }  // namespace vcmm::geometry

@@ -20,10 +20,11 @@ namespace {
 constexpr const char* kCaller = "roundness_parameters";
 
 /// |(dx, dy)|: the plain square root, falling back to hypot only where dx² + dy² overflows
-/// (coordinates beyond ~1e154), so the common case stays fast and exactly rounded once.
+/// (coordinates beyond ~1e154) or loses precision to underflow (distances below 1e-150,
+/// whose squares leave the normal range), so the common case stays fast.
 double distance(double dx, double dy) {
   const double r = std::sqrt(dx * dx + dy * dy);
-  return std::isfinite(r) ? r : std::hypot(dx, dy);
+  return std::isfinite(r) && r > 1e-150 ? r : std::hypot(dx, dy);
 }
 
 }  // namespace
@@ -42,6 +43,12 @@ RoundnessParameters roundness_parameters(std::span<const Point2> points, Point2 
     os << kCaller << ": the reference radius must be finite; got " << reference_radius;
     throw InvalidInput(os.str());
   }
+  // d_i² is summed as (d_i·2^−e)² with 2^e the scale of the radius (an exact rescaling), so
+  // RONq neither overflows for huge coordinates nor underflows for tiny ones.
+  const double size = std::max(std::fabs(reference_radius),
+                               distance(points[0].x - center.x, points[0].y - center.y));
+  const int e = size > 0.0 && std::isfinite(size) ? std::ilogb(size) : 0;
+  const double inv_scale = std::ldexp(1.0, -e);  // multiplying by it is exact
   double r_max = -1.0, r_min = 0.0, sum_dd = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double r = distance(points[i].x - center.x, points[i].y - center.y);
@@ -51,7 +58,7 @@ RoundnessParameters roundness_parameters(std::span<const Point2> points, Point2 
       r_max = std::max(r_max, r);
       r_min = std::min(r_min, r);
     }
-    const double d = r - reference_radius;
+    const double d = (r - reference_radius) * inv_scale;
     sum_dd += d * d;
   }
   RoundnessParameters out;
@@ -59,7 +66,7 @@ RoundnessParameters roundness_parameters(std::span<const Point2> points, Point2 
   out.ront = r_max - r_min;
   out.ronp = std::max(0.0, d_max);
   out.ronv = std::max(0.0, -d_min);
-  out.ronq = std::sqrt(sum_dd / static_cast<double>(points.size()));
+  out.ronq = std::ldexp(std::sqrt(sum_dd / static_cast<double>(points.size())), e);
   return out;
 }
 

@@ -1,6 +1,7 @@
 // The `vcmm roundness` contract (docs/cli.md): JSON keys, exit codes, messages, atomic output.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -107,6 +108,23 @@ TEST(CliRoundness, BadInputsExitNonZeroWithAClearMessage) {
   const CliRun missing = run("roundness /nonexistent/ring.csv");
   EXPECT_EQ(missing.exit_code, 3);
   EXPECT_NE(missing.err.find("cannot open"), std::string::npos);
+}
+
+TEST(CliRoundness, ExtremeCoordinatesNeverCrash) {
+  // Regression: 1e180-scale coordinates made `verify` trap (SIGFPE) inside the CLI.
+  std::ostringstream csv;
+  csv.precision(17);
+  for (int i = 0; i < 12; ++i) {
+    const double t = 2 * 3.141592653589793 * i / 12, r = 1e180 * (1 + 0.01 * std::cos(3 * t));
+    csv << r * std::cos(t) << "," << r * std::sin(t) << "\n";
+  }
+  const fs::path p = write_scratch("huge.csv", csv.str());
+  const CliRun circles = run("roundness '" + p.string() + "' --json --reference MZ");
+  ASSERT_EQ(circles.exit_code, 0) << circles.err;
+  EXPECT_TRUE(nlohmann::json::parse(circles.out)["MZ"]["certified"].get<bool>());
+  const CliRun ls = run("roundness '" + p.string() + "' --json --reference LS");
+  EXPECT_EQ(ls.exit_code, 3);
+  EXPECT_NE(ls.err.find("overflow"), std::string::npos) << ls.err;
 }
 
 TEST(CliRoundness, FilterOnASparseProfileIsRefused) {

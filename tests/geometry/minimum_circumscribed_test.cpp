@@ -323,9 +323,9 @@ TEST(MinimumCircumscribed, ExtremeMagnitudesScaleExactly) {
     std::sort(a.begin(), a.end());
     std::sort(b.begin(), b.end());
     EXPECT_EQ(a, b) << "2^" << e;
-    // Exact containment by the test's own rationals (verify() is not used here: at these
-    // magnitudes its ulp tolerance overflows — reported to its author).
+    // Exact containment by the test's own rationals, and the independent check.
     EXPECT_TRUE(encloses(circle_of(q, mc.contacts), q)) << "2^" << e;
+    EXPECT_TRUE(verify(q, mc).valid) << "2^" << e << ": " << verify(q, mc).reason;
   }
 }
 

@@ -302,5 +302,37 @@ std::string profile_name(const ::testing::TestParamInfo<std::size_t>& info) {
 INSTANTIATE_TEST_SUITE_P(LobedRings, RoundnessProperties, ::testing::Range<std::size_t>(0, 6),
                          profile_name);
 
+// Regression: a 3-lobed 12-point ring scaled to 1e±180. Before the fix, verify() trapped in
+// GMP (SIGFPE) on a NaN tolerance at 1e180, MZ reported infinite radii and MI/MC an infinite
+// or wrong RONq, and LS blamed "collinear" points. Now MZ/MI/MC give finite results that
+// verify exactly, consistent with the unit-scale answer, and LS names the overflow.
+TEST(ExtremeScale, CirclesStayFiniteAndCertifiedLeastSquaresSaysWhy) {
+  for (const double scale : {1e180, 1e-180}) {
+    std::vector<Point2> p;
+    for (int i = 0; i < 12; ++i) {
+      const double t = 2 * std::numbers::pi * i / 12, r = 1 + 0.01 * std::cos(3 * t);
+      p.push_back({scale * r * std::cos(t), scale * r * std::sin(t)});
+    }
+    SCOPED_TRACE("scale " + std::to_string(std::log10(scale)));
+    const auto mz = minimum_zone_circle(p);
+    EXPECT_TRUE(std::isfinite(mz.outer_radius) && std::isfinite(mz.ron.ronq));
+    EXPECT_NEAR(mz.ron.ront / scale, 0.02, 1e-3);  // two lobe amplitudes of 0.01
+    EXPECT_TRUE(verify(p, mz).valid) << verify(p, mz).reason;
+    const auto mi = maximum_inscribed_circle(p);
+    EXPECT_LE(mi.ron.ronq, mi.ron.ront);
+    EXPECT_TRUE(verify(p, mi).valid) << verify(p, mi).reason;
+    const auto mc = minimum_circumscribed_circle(p);
+    EXPECT_LE(mc.ron.ronq, mc.ron.ront);
+    EXPECT_TRUE(verify(p, mc).valid) << verify(p, mc).reason;
+    try {
+      least_squares_circle(p);
+      ADD_FAILURE() << "least squares cannot form its moments at this scale";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(scale > 1 ? "overflow" : "underflow"),
+                std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vcmm::test

@@ -9,15 +9,15 @@
 #include <string>
 #include <utility>
 
+#include "vcmm/geometry/point.h"
+
 namespace vcmm::errormodel {
 
 /// A measurement, an option or a measurement file that cannot be used: NaN/inf coordinates,
 /// normals that are not unit vectors, mismatched sizes, an unparsable CSV line. The message
-/// names the function or the file and 1-based line, the rule and the offending value.
-class InvalidInput : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
+/// names the function or the file and 1-based line, the rule and the offending value. The
+/// same type as vcmm::geometry::InvalidInput: one "bad input" exception for the library.
+using InvalidInput = vcmm::geometry::InvalidInput;
 
 /// A digital-model parameter file that breaks its schema: a missing, unknown, negative,
 /// non-numeric or non-finite entry, or a wrong schema/version. `key_path()` is the full dotted

@@ -21,4 +21,18 @@ void add_roundness_command(CLI::App& app, int* exit_code);
 /// Registers `vcmm simulate` (a ring-gauge measurement on the virtual CMM).
 void add_simulate_command(CLI::App& app, int* exit_code);
 
+/// Registers `vcmm uncertainty` (Monte Carlo uncertainty of one ring measurement).
+void add_uncertainty_command(CLI::App& app, int* exit_code);
+
+/// Registers `vcmm validate` (a validation campaign) and `vcmm demo` (the synthetic world).
+void add_validate_command(CLI::App& app, int* exit_code);
+void add_demo_command(CLI::App& app, int* exit_code);
+
+/// Registers `vcmm characterize` and its subcommands (hole-plate, sphere, noise), each
+/// writing one section of the digital-model JSON.
+void add_characterize_command(CLI::App& app, int* exit_code);
+void add_characterize_hole_plate_command(CLI::App& characterize, int* exit_code);
+void add_characterize_sphere_command(CLI::App& characterize, int* exit_code);
+void add_characterize_noise_command(CLI::App& characterize, int* exit_code);
+
 }  // namespace vcmm::cli

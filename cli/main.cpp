@@ -13,6 +13,10 @@ int main(int argc, char** argv) {
   int exit_code = vcmm::cli::kOk;
   vcmm::cli::add_roundness_command(app, &exit_code);
   vcmm::cli::add_simulate_command(app, &exit_code);
+  vcmm::cli::add_uncertainty_command(app, &exit_code);
+  vcmm::cli::add_validate_command(app, &exit_code);
+  vcmm::cli::add_demo_command(app, &exit_code);
+  vcmm::cli::add_characterize_command(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

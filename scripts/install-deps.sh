@@ -8,7 +8,8 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev libboost-dev
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
-  python3
+  librandom123-dev
+  python3 python3-matplotlib python3-numpy
 )
 
 missing=()

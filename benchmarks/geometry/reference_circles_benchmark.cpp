@@ -80,6 +80,15 @@ void BM_GaussianFilter(benchmark::State& state) {
 }
 BENCHMARK(BM_GaussianFilter)->Apply(sizes);
 
+// The filter about an LS circle the caller already has (the Monte Carlo trial fits it for
+// the diameter anyway): BM_GaussianFilter without its LS fit.
+void BM_GaussianFilterSharedLs(benchmark::State& state) {
+  const auto& p = profile(static_cast<std::size_t>(state.range(0)));
+  const g::LeastSquaresCircle ls = g::least_squares_circle(p);
+  for (auto _ : state) benchmark::DoNotOptimize(g::gaussian_filtered_profile(p, 50.0, ls));
+}
+BENCHMARK(BM_GaussianFilterSharedLs)->Apply(sizes);
+
 // The whole evaluation of the target: filter (50 UPR) + LS + MZ + MI + MC.
 void BM_AllFourCirclesFiltered(benchmark::State& state) {
   const auto& p = profile(static_cast<std::size_t>(state.range(0)));

@@ -1,6 +1,8 @@
 // Measurement: validation, placement and the measurement CSV (docs/errormodel.md).
 #include "vcmm/errormodel/measurement.h"
 
+#include "vcmm/errormodel/atomic_file.h"
+
 #include <unistd.h>
 
 #include <array>
@@ -210,35 +212,10 @@ std::string measurement_csv(const Measurement& m, std::span<const std::string> c
 
 void write_measurement_csv_file(const std::string& path, const Measurement& m,
                                 std::span<const std::string> comments) {
-  namespace fs = std::filesystem;
-  const std::string content = measurement_csv(m, comments);
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string name = ".";  // built by appends: GCC 12 warns falsely on "." + string
-  name += target.filename().string();
-  name += ".tmp.";
-  name += std::to_string(::getpid());
-  const fs::path tmp = dir / name;
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("write_measurement_csv_file: cannot create '" +
-                                     tmp.string() + "' beside '" + path + "'");
-    f << content;
-    f.flush();
-    if (!f) {
-      f.close();
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw std::runtime_error("write_measurement_csv_file: cannot write '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw std::runtime_error("write_measurement_csv_file: cannot rename the temporary to '" +
-                             path + "': " + ec.message());
+  try {
+    write_file_atomically(path, measurement_csv(m, comments));
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("write_measurement_csv_file: ") + e.what());
   }
 }
 

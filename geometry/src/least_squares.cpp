@@ -56,6 +56,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "internal/prevalidated.h"
+
 namespace vcmm::geometry {
 namespace {
 
@@ -313,6 +315,10 @@ class Fitter {
 
 LeastSquaresCircle least_squares_circle(std::span<const Point2> points) {
   validate_profile(points, 3, kCaller);
+  return internal::fit_least_squares_circle(points);
+}
+
+LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> points) {
   thread_local Workspace workspace;
   Fitter fit(points, workspace);
   const double nd = static_cast<double>(fit.size());

@@ -110,6 +110,7 @@
 
 #include "internal/exact.h"
 #include "internal/extremal_circle.h"
+#include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
 
@@ -749,6 +750,10 @@ MaximumInscribedCircle exhaustive(std::span<const Point2> points) {
 
 MaximumInscribedCircle maximum_inscribed_circle(std::span<const Point2> points) {
   validate_profile(points, 3, kCaller, /*require_non_collinear=*/true);
+  return internal::fit_maximum_inscribed_circle(points);
+}
+
+MaximumInscribedCircle internal::fit_maximum_inscribed_circle(std::span<const Point2> points) {
   // Small inputs: the exhaustive method is as fast and needs no warm start.
   if (points.size() >= 16) {
     if (std::optional<MaximumInscribedCircle> mi = fast_path(points)) return *std::move(mi);

@@ -58,6 +58,7 @@
 
 #include "internal/exact.h"
 #include "internal/extremal_circle.h"
+#include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
 
@@ -227,6 +228,11 @@ std::vector<std::size_t> choose_contacts(std::span<const Point2> points,
 
 MinimumCircumscribedCircle minimum_circumscribed_circle(std::span<const Point2> points) {
   validate_profile(points, 2, "minimum_circumscribed_circle", /*require_non_collinear=*/false);
+  return internal::fit_minimum_circumscribed_circle(points);
+}
+
+MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
+    std::span<const Point2> points) {
   const std::size_t n = points.size();
 
   // 1. Warm start and candidate set: the farthest point from c0 in each of `sectors`

@@ -1,6 +1,7 @@
 #include "vcmm/geometry/point.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <Eigen/Core>
 
 #include <cmath>
 #include <sstream>
@@ -14,7 +15,15 @@ void validate_profile(std::span<const Point2> points, std::size_t min_points,
     os << caller << ": needs at least " << min_points << " points; got " << points.size();
     throw InvalidInput(os.str());
   }
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  // Fast path (the Monte Carlo loop validates ~10⁴ profiles a second): v·0 is 0 for finite
+  // v and NaN for NaN or ±inf, so the sum of every coordinate times 0 is 0 exactly when all
+  // are finite — one vectorised pass with no branch per point. Only a failure runs the
+  // point-by-point search below, which names the first offending point.
+  static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2 must be two packed doubles");
+  const Eigen::Map<const Eigen::ArrayXd> coordinates(
+      reinterpret_cast<const double*>(points.data()), static_cast<Eigen::Index>(2 * points.size()));
+  const bool all_finite = points.empty() || (coordinates * 0.0).sum() == 0.0;
+  for (std::size_t i = 0; !all_finite && i < points.size(); ++i) {
     if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y)) {
       std::ostringstream os;
       os << caller << ": point " << i << " has a non-finite coordinate (x = " << points[i].x

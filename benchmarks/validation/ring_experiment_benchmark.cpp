@@ -1,0 +1,79 @@
+// Trials per second of the ring-gauge virtual experiment (issue 4's target: ≥ 10 000 trials/s
+// on this 2-core machine): a 3600-point scanning measurement (and a 360-point touch-trigger
+// one) of the 171 mm ring at the centre of the volume, all five error sources of
+// examples/cmm_model.json, LS diameter and RONt about the MZ circle after the 50 UPR Gaussian
+// filter. BM_RingMonteCarlo runs the whole engine (threads 1 and 2; items/s = trials/s);
+// BM_RingTrial one trial on one thread (no engine), for the cost split.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "vcmm/errormodel/digital_model.h"
+#include "vcmm/errormodel/ring_gauge.h"
+#include "vcmm/errormodel/virtual_cmm.h"
+#include "vcmm/validation/ring_experiment.h"
+
+namespace {
+
+namespace em = vcmm::errormodel;
+namespace va = vcmm::validation;
+
+const em::DigitalModel& example_model() {
+  static const em::DigitalModel model =
+      em::read_digital_model_file(std::string(VCMM_SOURCE_DIR) + "/examples/cmm_model.json");
+  return model;
+}
+
+em::Measurement measured_ring(Eigen::Index n) {
+  em::RingGauge ring;
+  ring.form = em::seed_study_ring_form();
+  em::RingSampling s;
+  s.points = n;
+  s.mode = n >= 1000 ? em::ProbingMode::scanning : em::ProbingMode::touch_trigger;
+  s.placement.location_mm = {600.0, 500.0, 250.0};
+  s.stylus_offset_mm = {0.0, 0.0, -100.0};
+  s.temperature_c = 20.3;
+  const em::Measurement truth = em::ring_gauge_measurement(ring, s);
+  em::SeededRandomSource rng(11);
+  return em::simulate(truth, example_model(), em::draw_errors(example_model(), truth, rng));
+}
+
+void BM_RingTrial(benchmark::State& state) {
+  const em::Measurement best =
+      em::correct(measured_ring(state.range(0)), example_model());
+  va::RingTrial trial(example_model(),
+                      std::make_shared<const em::PreparedMeasurement>(best, example_model()), {},
+                      em::Stages::all());
+  double out[2];
+  std::uint64_t t = 0;
+  for (auto _ : state) {
+    vcmm::uncertainty::RandomStream rng(1, t++);
+    trial(rng, out);
+    benchmark::DoNotOptimize(out);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_RingTrial)->Arg(3600)->Arg(360)->Unit(benchmark::kMicrosecond);
+
+void BM_RingMonteCarlo(benchmark::State& state) {
+  const em::Measurement measured = measured_ring(state.range(0));
+  va::RingUncertaintyOptions o;
+  o.monte_carlo.trials = 2000;
+  o.monte_carlo.threads = static_cast<unsigned>(state.range(1));
+  for (auto _ : state) {
+    const auto r = va::evaluate_ring_uncertainty(example_model(), measured, o);
+    benchmark::DoNotOptimize(r.monte_carlo.samples.data());
+  }
+  state.SetItemsProcessed(state.iterations() * 2000);
+}
+BENCHMARK(BM_RingMonteCarlo)
+    ->Args({3600, 1})
+    ->Args({3600, 2})
+    ->Args({360, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,54 @@
+// cli/run_control.h — long runs on the terminal: a progress bar on stderr (shown once a run
+// has taken more than a second) and a clean stop on Ctrl-C (SIGINT sets a flag the Monte Carlo
+// engine polls; a second Ctrl-C kills the process as usual).
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace vcmm::cli {
+
+/// Installs the SIGINT handler for its lifetime (restores the previous one on destruction).
+class InterruptGuard {
+ public:
+  InterruptGuard();
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+  /// The flag SIGINT sets (pass it as MonteCarloOptions::cancel).
+  const std::atomic<bool>* flag() const;
+  bool interrupted() const;
+};
+
+/// When to draw the bar: auto = only when stderr is a terminal.
+enum class ProgressMode { automatic, always, never };
+ProgressMode progress_mode_from_string(const std::string& text);  // throws std::invalid_argument
+
+/// A one-line progress bar on stderr: "label [#####.....] 52 % 5.2e5/1e6 trials, 12 s left".
+class ProgressBar {
+ public:
+  ProgressBar(std::string label, ProgressMode mode);
+  ~ProgressBar();  ///< ends the line if anything was drawn
+  void update(std::uint64_t done, std::uint64_t planned);
+  void finish();
+
+ private:
+  std::string label_;
+  bool enabled_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace vcmm::cli
+
+namespace vcmm::cli {
+
+/// Call inside a catch block: prints "vcmm COMMAND: error: ..." for the exception in flight
+/// and returns the exit code: 3 for invalid input (std::invalid_argument: InvalidInput,
+/// InvalidParameter, CampaignError — also when nested in a Monte Carlo trial's
+/// uncertainty::ExperimentError, which names the trial), 1 for anything else.
+int report_current_exception(const char* command);
+
+}  // namespace vcmm::cli

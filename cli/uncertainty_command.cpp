@@ -1,0 +1,163 @@
+// `vcmm uncertainty --model MODEL.json --points MEASURED.csv [--trials M | --adaptive TOL_UM]
+//                   [--seed S] [--threads T] [--reference MZ|MI|LS|MC] [--filter-upr N|none]
+//                   [--json] [-o OUT] [--samples OUT.csv] [--progress auto|always|never]`
+// Monte Carlo uncertainty (JCGM 101) of the diameter and roundness of one ring measurement,
+// with the bias and the bias-corrected estimates (docs/uncertainty.md, docs/cli.md).
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "atomic_file.h"
+#include "commands.h"
+#include "run_control.h"
+#include "vcmm/errormodel/digital_model.h"
+#include "vcmm/errormodel/measurement.h"
+#include "vcmm/validation/ring_experiment.h"
+#include "vcmm/validation/ring_uncertainty_report.h"
+
+namespace vcmm::cli {
+namespace {
+
+namespace em = vcmm::errormodel;
+namespace va = vcmm::validation;
+
+/// Exit status of a run stopped by Ctrl-C (128 + SIGINT, the shell convention).
+constexpr int kInterrupted = 130;
+
+struct UncertaintyOptions {
+  std::string model, points;
+  std::uint64_t trials = 0;  // 0: the default (unless adaptive)
+  double adaptive_tolerance_um = 0.0;
+  std::uint64_t seed = 1;
+  unsigned threads = 0;
+  std::string reference = "MZ";
+  std::string filter = "50";
+  double coverage = 0.95;
+  bool json = false;
+  std::string output, samples;
+  std::string progress = "auto";
+};
+
+constexpr std::uint64_t kDefaultTrials = 100'000;
+
+int run_uncertainty(const UncertaintyOptions& o) {
+  va::RingUncertaintyOptions options;
+  ProgressMode progress_mode;
+  try {
+    std::string circle = o.reference;  // IsMember-checked: MZ, MI, LS, MC in either case
+    for (char& c : circle) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    options.evaluation.reference = *va::reference_circle_from_string(circle);
+    if (o.filter == "none") {
+      options.evaluation.filter_cutoff_upr.reset();
+    } else {
+      std::size_t used = 0;
+      double upr = 0.0;
+      try {
+        upr = std::stod(o.filter, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != o.filter.size() || !std::isfinite(upr) || upr <= 0.0)
+        throw std::invalid_argument("--filter-upr must be a positive number of UPR or 'none'; "
+                                    "got '" + o.filter + "'");
+      options.evaluation.filter_cutoff_upr = upr;
+    }
+    if (o.trials > 0 && o.adaptive_tolerance_um > 0.0)
+      throw std::invalid_argument("--trials and --adaptive exclude each other");
+    if (!(o.coverage > 0.0 && o.coverage < 1.0))
+      throw std::invalid_argument("--coverage must lie in (0, 1)");
+    options.monte_carlo.trials = o.trials > 0 ? o.trials : kDefaultTrials;
+    options.monte_carlo.seed = o.seed;
+    options.monte_carlo.threads = o.threads;
+    options.monte_carlo.coverage_probability = o.coverage;
+    if (o.adaptive_tolerance_um > 0.0) {
+      uncertainty::AdaptiveOptions adaptive;
+      adaptive.numerical_tolerance = o.adaptive_tolerance_um / 1000.0;  // µm → mm
+      options.adaptive = adaptive;
+    }
+    progress_mode = progress_mode_from_string(o.progress);
+  } catch (const std::invalid_argument& ex) {
+    std::cerr << "vcmm uncertainty: error: " << ex.what() << "\n";
+    return kUsage;
+  }
+  try {
+    const em::DigitalModel model = em::read_digital_model_file(o.model);
+    const em::Measurement measured = em::read_measurement_csv_file(o.points);
+    InterruptGuard interrupt;
+    ProgressBar bar("vcmm uncertainty", progress_mode);
+    options.monte_carlo.cancel = interrupt.flag();
+    options.monte_carlo.progress = [&bar](std::uint64_t done, std::uint64_t planned) {
+      bar.update(done, planned);
+    };
+    const va::RingUncertaintyResult result =
+        va::evaluate_ring_uncertainty(model, measured, options);
+    bar.finish();
+    const bool cancelled = result.monte_carlo.status == uncertainty::RunStatus::cancelled;
+    const std::string report = o.json ? va::ring_uncertainty_json(result, options)
+                                      : va::ring_uncertainty_text(result, options);
+    // An interrupted run reports what it did, but never writes files that look finished.
+    if (!o.output.empty() && !cancelled) {
+      write_file_atomically(o.output, report);
+    } else {
+      std::cout << report;
+    }
+    if (!o.samples.empty() && !cancelled)
+      write_file_atomically(o.samples, va::ring_samples_csv(result.monte_carlo));
+    if (cancelled) {
+      std::cerr << "vcmm uncertainty: interrupted: the statistics above cover only the "
+                << result.monte_carlo.trials << " trials done; no output file written\n";
+      return kInterrupted;
+    }
+    return kOk;
+  } catch (const std::exception&) {
+    return report_current_exception("uncertainty");
+  }
+}
+
+}  // namespace
+
+void add_uncertainty_command(CLI::App& app, int* exit_code) {
+  auto opts = std::make_shared<UncertaintyOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "uncertainty",
+      "Monte Carlo uncertainty (JCGM 101) of the diameter and roundness of one ring "
+      "measurement, with bias and bias-corrected estimates");
+  cmd->add_option("--model", opts->model, "digital-model JSON (docs/errormodel.md)")->required();
+  cmd->add_option("--points", opts->points,
+                  "the measurement CSV (points, normals, placement; docs/errormodel.md)")
+      ->required();
+  auto* trials = cmd->add_option("--trials", opts->trials,
+                                 "number of Monte Carlo trials M (default 100000)")
+                     ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100'000'000}));
+  auto* adaptive = cmd->add_option(
+      "--adaptive", opts->adaptive_tolerance_um,
+      "adaptive JCGM 101 7.9 run to this numerical tolerance (um) for u and interval ends")
+      ->check(CLI::PositiveNumber);
+  trials->excludes(adaptive);
+  cmd->add_option("--seed", opts->seed, "seed: fixes every number, whatever the thread count")
+      ->default_val(1);
+  cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
+      ->default_val(0);
+  cmd->add_option("--reference", opts->reference, "reference circle of RONt: MZ, MI, LS or MC")
+      ->check(CLI::IsMember({"MZ", "MI", "LS", "MC", "mz", "mi", "ls", "mc"}))
+      ->default_val("MZ");
+  cmd->add_option("--filter-upr", opts->filter,
+                  "ISO 16610-21 Gaussian cut-off (UPR) before the roundness, or 'none'")
+      ->default_val("50");
+  cmd->add_option("--coverage", opts->coverage, "coverage probability of the intervals")
+      ->default_val(0.95);
+  cmd->add_flag("--json", opts->json, "print JSON instead of the table");
+  cmd->add_option("-o,--output", opts->output, "write the report to this file (atomically)");
+  cmd->add_option("--samples", opts->samples,
+                  "write the samples (diameter_mm,roundness_um per trial) to this CSV");
+  cmd->add_option("--progress", opts->progress,
+                  "progress bar on stderr: auto (when a terminal), always, never")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
+      ->default_val("auto");
+  cmd->callback([opts, exit_code] { *exit_code = run_uncertainty(*opts); });
+}
+
+}  // namespace vcmm::cli

@@ -1,0 +1,189 @@
+// `vcmm validate CAMPAIGN.json -o OUTDIR [--threads T] [--no-denoised] [--progress ...]`
+//   runs the uncertainty evaluation of every measurement of a campaign, compares with the
+//   reference values (E_n, zeta) under the bias treatments, and writes the tables; resumable.
+// `vcmm demo --model MODEL.json -o OUTDIR [--trials M] [--seed S] [--world-seed W] ...`
+//   builds the synthetic ground-truth world (docs/demo.md), writes it as a campaign into
+//   OUTDIR/world and validates it, with the true values known.
+// (docs/validation.md, docs/cli.md.)
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "commands.h"
+#include "run_control.h"
+#include "vcmm/errormodel/digital_model.h"
+#include "vcmm/validation/campaign.h"
+#include "vcmm/validation/campaign_run.h"
+#include "vcmm/validation/demo_world.h"
+
+namespace vcmm::cli {
+namespace {
+
+namespace va = vcmm::validation;
+
+constexpr int kInterrupted = 130;
+
+struct CampaignCliOptions {
+  std::string campaign, output, model;
+  unsigned threads = 0;
+  bool no_denoised = false;
+  std::string progress = "auto";
+  // demo only
+  std::uint64_t trials = 10000;
+  std::uint64_t seed = 1;
+  std::uint64_t world_seed = va::DemoWorldOptions{}.seed;
+};
+
+void print_summary(const va::CampaignOutcome& o, const std::string& out_dir) {
+  std::printf("\n%zu measurements (%zu computed, %zu resumed) in %.1f s; tables in %s\n",
+              o.measurements.size(), o.computed, o.resumed, o.wall_seconds, out_dir.c_str());
+  std::printf("\nE_n over all measurements (honest uncertainties: mean ~0, RMS ~0.5, "
+              "95.4 %% within +-1)\n");
+  std::printf("  %-10s %-12s %4s %10s %9s %8s\n", "measurand", "treatment", "n", "|En|<=1",
+              "mean En", "RMS En");
+  for (const auto& r : o.summary) {
+    if (r.factor != "all") continue;
+    std::printf("  %-10s %-12s %4zu %9.1f%% %9.3f %8.3f\n", r.measurand.c_str(),
+                r.treatment.c_str(), r.n, 100.0 * r.share_within_1, r.mean_en, r.rms_en);
+  }
+  if (!o.treatments.empty()) {
+    std::printf("\nAgainst the true values (demo): error = reported - true\n");
+    std::printf("  %-10s %-12s %12s %12s\n", "measurand", "treatment", "mean error", "RMS error");
+    for (const auto& r : o.treatments) {
+      const double s = 1000.0;  // both shown in µm
+      std::printf("  %-10s %-12s %9.4f um %9.4f um\n", r.measurand.c_str(),
+                  r.treatment.c_str(), r.mean_error_mm * s, r.rms_error_mm * s);
+    }
+  }
+}
+
+int run_campaign_cli(const va::Campaign& campaign, const std::string& out_dir,
+                     const CampaignCliOptions& o,
+                     std::map<std::string, va::RingMeasurands> truth, const char* name,
+                     std::map<std::string, std::string> provenance) {
+  InterruptGuard interrupt;
+  const ProgressMode mode = progress_mode_from_string(o.progress);
+  std::unique_ptr<ProgressBar> bar;
+  va::CampaignRunOptions options;
+  options.threads = o.threads;
+  options.denoised_treatment = !o.no_denoised;
+  options.truth = std::move(truth);
+  options.cancel = interrupt.flag();
+  options.provenance = std::move(provenance);
+  options.on_measurement = [&](std::size_t i, std::size_t n, const std::string& id,
+                               bool resumed) {
+    bar.reset();
+    if (resumed) {
+      std::fprintf(stderr, "[%zu/%zu] %s: done in an earlier run (loaded)\n", i + 1, n,
+                   id.c_str());
+    } else {
+      std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, n, id.c_str());
+      bar = std::make_unique<ProgressBar>(std::string("  ") + id, mode);
+    }
+  };
+  options.progress = [&](std::uint64_t done, std::uint64_t planned) {
+    if (bar) bar->update(done, planned);
+  };
+  const va::CampaignOutcome outcome = va::run_campaign(campaign, out_dir, options);
+  bar.reset();
+  if (outcome.cancelled) {
+    std::fprintf(stderr,
+                 "vcmm %s: interrupted after %zu finished measurement(s); they are kept in %s/"
+                 "measurements — run the same command again to resume\n",
+                 name, outcome.measurements.size(), out_dir.c_str());
+    return kInterrupted;
+  }
+  print_summary(outcome, out_dir);
+  return kOk;
+}
+
+template <class Body>
+int guarded(const char* name, Body body) {
+  try {
+    return body();
+  } catch (const std::exception&) {
+    return report_current_exception(name);
+  }
+}
+
+int run_validate(const CampaignCliOptions& o) {
+  return guarded("validate", [&] {
+    const va::Campaign campaign = va::read_campaign_file(o.campaign);
+    return run_campaign_cli(campaign, o.output, o, {}, "validate",
+                            {{"command", "vcmm validate " + o.campaign + " -o " + o.output}});
+  });
+}
+
+int run_demo(const CampaignCliOptions& o) {
+  return guarded("demo", [&] {
+    std::ifstream in(o.model, std::ios::binary);
+    if (!in) throw std::invalid_argument("cannot read the model file '" + o.model + "'");
+    std::ostringstream text;
+    text << in.rdbuf();
+    const errormodel::DigitalModel model = errormodel::parse_digital_model(text.str(), o.model);
+    va::DemoWorldOptions wo;
+    wo.seed = o.world_seed;
+    std::fprintf(stderr, "vcmm demo: building the ground-truth world (seed %llu)\n",
+                 static_cast<unsigned long long>(wo.seed));
+    const va::DemoWorld world = va::make_demo_world(model, wo);
+    va::EvaluationSettings ev;
+    ev.trials = o.trials;
+    ev.seed = o.seed;
+    const std::filesystem::path world_dir = std::filesystem::path(o.output) / "world";
+    auto truth = va::write_demo_campaign(world, text.str(), ev, world_dir);
+    const va::Campaign campaign = va::read_campaign_file(world_dir / "campaign.json");
+    std::fprintf(stderr, "vcmm demo: %zu measurements, %llu trials each\n",
+                 campaign.measurements.size(), static_cast<unsigned long long>(o.trials));
+    return run_campaign_cli(
+        campaign, o.output, o, std::move(truth), "demo",
+        {{"command", "vcmm demo --model " + o.model + " -o " + o.output + " --trials " +
+                         std::to_string(o.trials) + " --seed " + std::to_string(o.seed) +
+                         " --world-seed " + std::to_string(o.world_seed)},
+         {"world", (world_dir / "campaign.json").string()}});
+  });
+}
+
+void add_common(CLI::App* cmd, CampaignCliOptions& o) {
+  cmd->add_option("-o,--output", o.output, "output directory (created; reruns resume)")
+      ->required();
+  cmd->add_option("--threads", o.threads, "Monte Carlo threads (default: all cores)")
+      ->default_val(0);
+  cmd->add_flag("--no-denoised", o.no_denoised,
+                "skip treatment (b) (the second Monte Carlo on the denoised truth)");
+  cmd->add_option("--progress", o.progress,
+                  "progress bar on stderr: auto (when a terminal), always, never")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
+      ->default_val("auto");
+}
+
+}  // namespace
+
+void add_validate_command(CLI::App& app, int* exit_code) {
+  auto o = std::make_shared<CampaignCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "validate", "validate the virtual CMM on a campaign: uncertainty, bias treatments, E_n");
+  cmd->add_option("campaign", o->campaign, "campaign JSON (docs/validation.md)")->required();
+  add_common(cmd, *o);
+  cmd->callback([o, exit_code] { *exit_code = run_validate(*o); });
+}
+
+void add_demo_command(CLI::App& app, int* exit_code) {
+  auto o = std::make_shared<CampaignCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "demo", "the validation demo: a synthetic ground-truth world of 66 measurements, validated");
+  cmd->add_option("--model", o->model, "digital-model JSON (e.g. examples/cmm_model.json)")
+      ->required();
+  cmd->add_option("--trials", o->trials, "Monte Carlo trials per measurement")
+      ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}))
+      ->default_val(10000);
+  cmd->add_option("--seed", o->seed, "seed of the Monte Carlo runs")->default_val(1);
+  cmd->add_option("--world-seed", o->world_seed, "seed of the synthetic world")
+      ->default_val(va::DemoWorldOptions{}.seed);
+  add_common(cmd, *o);
+  cmd->callback([o, exit_code] { *exit_code = run_demo(*o); });
+}
+
+}  // namespace vcmm::cli

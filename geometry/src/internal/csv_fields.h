@@ -1,0 +1,77 @@
+// internal/csv_fields.h — the field rules shared by the CSV readers of vcmm::geometry
+// (docs/formats.md): trimming, splitting a line on ',' / ';' or on runs of blanks and tabs,
+// parsing a field as a finite double. Used by roundness_profile.cpp; point_io.cpp still has
+// its own identical copy (the same rules, to be switched to this header). Not public API.
+#pragma once
+
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace vcmm::geometry::internal {
+
+/// `s` without leading and trailing blanks (space, tab, CR, FF, VT).
+inline std::string_view trim_blanks(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t\r\f\v");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r\f\v");
+  return s.substr(b, e - b + 1);
+}
+
+/// The fields of a (comment-free, trimmed) line: split on ',' or ';' when the line has one
+/// (fields trimmed; empty fields kept, so "1,,2" has three), else on runs of blanks/tabs.
+inline std::vector<std::string_view> split_csv_fields(std::string_view s) {
+  std::vector<std::string_view> out;
+  if (s.find_first_of(",;") != std::string_view::npos) {
+    std::size_t start = 0;
+    while (true) {
+      const auto pos = s.find_first_of(",;", start);
+      out.push_back(
+          trim_blanks(s.substr(start, pos == std::string_view::npos ? s.npos : pos - start)));
+      if (pos == std::string_view::npos) break;
+      start = pos + 1;
+    }
+    return out;
+  }
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
+    if (i >= s.size()) break;
+    std::size_t j = i;
+    while (j < s.size() && s[j] != ' ' && s[j] != '\t') ++j;
+    out.push_back(s.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+enum class FieldStatus {
+  ok,
+  not_a_number,  ///< empty, or not a number in full ("abc", "1.5x")
+  non_finite,    ///< "nan", "inf", or beyond the double range ("1e999")
+};
+
+/// Parses a whole field as a double (an optional leading '+' allowed), std::from_chars rules.
+inline FieldStatus parse_double_field(std::string_view f, double& value) {
+  if (f.empty()) return FieldStatus::not_a_number;
+  if (f.front() == '+') f.remove_prefix(1);
+  const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
+  if (ptr != f.data() + f.size()) return FieldStatus::not_a_number;
+  if (ec == std::errc::result_out_of_range) return FieldStatus::non_finite;
+  if (ec != std::errc()) return FieldStatus::not_a_number;
+  if (!std::isfinite(value)) return FieldStatus::non_finite;
+  return FieldStatus::ok;
+}
+
+/// ASCII lower case.
+inline std::string ascii_lower(std::string_view s) {
+  std::string out(s);
+  for (char& ch : out)
+    if (ch >= 'A' && ch <= 'Z') ch = static_cast<char>(ch - 'A' + 'a');
+  return out;
+}
+
+}  // namespace vcmm::geometry::internal

@@ -1,0 +1,32 @@
+// internal/prevalidated.h — the fitters without the public boundary's input check, for
+// callers inside vcmm::geometry that have validated the same points already (the filter,
+// evaluate_roundness): one O(n) validation per evaluation instead of one per entry point.
+// Each equals its public namesake on input that passes the namesake's validate_profile
+// call. Not part of the public API.
+#pragma once
+
+#include <span>
+
+#include "vcmm/geometry/least_squares.h"
+#include "vcmm/geometry/maximum_inscribed.h"
+#include "vcmm/geometry/minimum_circumscribed.h"
+#include "vcmm/geometry/minimum_zone.h"
+
+namespace vcmm::geometry::internal {
+
+/// least_squares_circle(points) without validate_profile. Precondition (not checked): the
+/// points passed validate_profile(points, 3, …) — ≥ 3 finite points, not all collinear.
+LeastSquaresCircle fit_least_squares_circle(std::span<const Point2> points);
+
+/// minimum_zone_circle(points, options) without validate_profile; precondition as above.
+MinimumZoneCircle fit_minimum_zone_circle(std::span<const Point2> points,
+                                          const MinimumZoneOptions& options);
+
+/// maximum_inscribed_circle(points) without validate_profile; precondition as above.
+MaximumInscribedCircle fit_maximum_inscribed_circle(std::span<const Point2> points);
+
+/// minimum_circumscribed_circle(points) without validate_profile. Precondition (not
+/// checked): validate_profile(points, 2, …, false) — ≥ 2 finite points, not all identical.
+MinimumCircumscribedCircle fit_minimum_circumscribed_circle(std::span<const Point2> points);
+
+}  // namespace vcmm::geometry::internal

@@ -1,0 +1,1534 @@
+#!/usr/bin/python3
+"""Validation figures and a self-contained HTML report for a vcmm validation run.
+
+Usage:  /usr/bin/python3 python/vcmm_report.py OUTDIR [--title T]
+
+OUTDIR is the output directory of `vcmm validate CAMPAIGN.json -o OUTDIR` or
+`vcmm demo -o OUTDIR` (format "agreed v1", described in docs/report.md):
+  results.csv, summary.csv                 required
+  treatments.csv, run_info.json            optional (demo / provenance)
+  samples/<id>.csv, residuals/<id>.csv     optional; read only for the measurements shown
+  results.json, summary.json               only linked from the report
+Writes OUTDIR/figures/*.png (matplotlib, Agg backend, 110 dpi) and OUTDIR/report.html, a single
+self-contained file (inline CSS, images embedded as base64 data URIs, no script, no external
+URL) that can be mailed.  Every file is written atomically: a temporary file in the same
+directory, then os.replace, so an interrupted run never leaves a half-written file that looks
+whole.
+
+Input checks: every required column present, the field count of every line equal to the
+header's, numbers finite (NaN/inf rejected), categorical columns from the agreed sets, E_n
+shares in [0, 1], residual angles in 0..360 and in order.  A failed check prints one line
+"vcmm_report.py: error: FILE: line N: what is wrong; offending value" and exits with code 3,
+never a traceback.
+
+Exit codes: 0 success; 1 internal error (a bug, with a traceback) or matplotlib missing;
+2 command-line error; 3 invalid input (missing or malformed file) or an output that cannot
+be written.
+
+Cost: linear in the size of results.csv and summary.csv plus the few samples/residuals files
+shown; about 4 s of CPU for 56 measurements, dominated by matplotlib's rendering.
+
+Runs with Debian's /usr/bin/python3 (python3-matplotlib 3.6, python3-numpy 1.24); the
+`python3` first on PATH may be another interpreter without matplotlib.
+"""
+
+import argparse
+import base64
+import dataclasses
+import datetime
+import html
+import json
+import math
+import os
+import re
+import sys
+import tempfile
+import traceback
+import urllib.parse
+
+PROG = "vcmm_report.py"
+DPI = 110
+
+RESULTS_COLUMNS = (
+    "id", "location", "orientation_deg", "height", "mode", "measurand", "unit", "reference",
+    "u_reference", "estimate", "u", "mc_mean", "bias", "corrected", "u_corrected",
+    "correction_applied", "interval_low", "interval_high", "En", "En_corrected", "zeta",
+    "zeta_corrected", "corrected_denoised", "En_denoised", "En_inflated", "true_value")
+# Numbers every row must carry; the others may be empty (refused corrections, treatments (b)
+# and (c), and the truth, which real data does not have).
+RESULTS_REQUIRED_NUMBERS = ("orientation_deg", "reference", "u_reference", "estimate", "u",
+                            "mc_mean", "bias", "interval_low", "interval_high", "En")
+RESULTS_OPTIONAL_NUMBERS = ("corrected", "u_corrected", "En_corrected", "zeta",
+                            "zeta_corrected", "corrected_denoised", "En_denoised",
+                            "En_inflated", "true_value")
+EN_COLUMNS = ("En", "En_corrected", "En_denoised", "En_inflated")
+SUMMARY_COLUMNS = ("factor", "level", "measurand", "treatment", "n", "share_abs_En_le_1",
+                   "mean_En", "rms_En")
+TREATMENTS_COLUMNS = ("measurand", "treatment", "n", "mean_En", "rms_En", "share_abs_En_le_1",
+                      "mean_error", "rms_error", "unit")
+SAMPLES_COLUMNS = ("diameter_mm", "roundness_um")
+RESIDUALS_COLUMNS = ("angle_deg", "deviation_um", "filtered_deviation_um")
+
+MEASURANDS = ("diameter", "roundness")
+MEASURAND_UNITS = {"diameter": ("mm",), "roundness": ("um", "µm")}
+FACTORS = ("all", "location", "orientation_deg", "height", "mode")
+TREATMENTS = ("uncorrected", "corrected", "denoised", "inflated")
+TREATMENT_LABELS = {
+    "uncorrected": "uncorrected",
+    "corrected": "(a) corrected",
+    "denoised": "(b) denoised bias",
+    "inflated": "(c) U + |b|",
+}
+HEIGHT_ORDER = ("top", "middle", "bottom")
+HEIGHT_PREFERENCE = ("middle", "top", "bottom")   # which height to show first
+MODE_ORDER = ("scanning", "touch_trigger")
+MODE_MARKERS = {"scanning": "o", "touch_trigger": "^"}
+EXTRA_MARKERS = ("s", "D", "v", "P", "X")
+ID_PATTERN = re.compile(r"[A-Za-z0-9_.-]+\Z")
+
+# Honest uncertainties: E_n = d / (k sqrt(u^2 + u_ref^2)) ~ N(0, (1/k)^2), hence mean 0,
+# RMS 1/k and P(|E_n| <= 1) = P(|z| <= k) = erf(k / sqrt 2); for k = 2: 0.5 and 95.4 %
+# (NOTES.md: "|E_n| > 1 happens 4.6 % of the time").  See Run.expected_rms/expected_share.
+EXPECTED_MEAN_EN = 0.0
+
+# E_n axes: values beyond this are drawn at the edge with their value written beside them,
+# so that one wild point does not flatten the +-1 band of the others.
+EN_AXIS_CAP = 5.0
+# Polar residual plots: the largest |deviation| shown, rounded up to 1, 2, 2.5 or 5 x 10^n um,
+# spans this fraction of the base radius.
+POLAR_SPAN = 0.35
+# Angles of residual profiles: 0..360 deg within this slack (printing round-off).
+ANGLE_SLACK_DEG = 1e-6
+
+
+class InputError(Exception):
+    """A missing or malformed input file (exit code 3)."""
+
+
+class OutputError(Exception):
+    """An output that cannot be written (exit code 3)."""
+
+
+class MissingDependency(Exception):
+    """matplotlib or numpy cannot be imported (exit code 1)."""
+
+
+# --------------------------------------------------------------------------------------------
+# Reading
+# --------------------------------------------------------------------------------------------
+
+def read_csv_table(path, columns):
+    """Reads a comma-separated table with a header line.
+
+    Returns a list of (line_number, {column: text}) for the data lines (blank lines skipped,
+    fields stripped).  Every column of `columns` must appear in the header; extra columns are
+    allowed and ignored (forward compatibility).  Raises InputError naming the file and line.
+    """
+    try:
+        with open(path, "rb") as f:
+            raw = f.read()
+    except FileNotFoundError:
+        raise InputError(f"{path}: file not found") from None
+    except IsADirectoryError:
+        raise InputError(f"{path}: is a directory, expected a CSV file") from None
+    except OSError as e:
+        raise InputError(f"{path}: cannot read: {e.strerror}") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = raw[:e.start].count(b"\n") + 1
+        raise InputError(f"{path}: line {line}: not UTF-8 text (byte 0x{raw[e.start]:02x})") \
+            from None
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    lines = text.splitlines()
+    if not lines or not lines[0].strip():
+        raise InputError(f"{path}: line 1: empty; expected the header "
+                         f"'{','.join(columns)}'")
+    header = [h.strip() for h in lines[0].split(",")]
+    seen = set()
+    for h in header:
+        if h in seen:
+            raise InputError(f"{path}: line 1: column '{h}' appears twice in the header")
+        seen.add(h)
+    missing = [c for c in columns if c not in seen]
+    if missing:
+        raise InputError(f"{path}: line 1: header lacks column(s) {', '.join(missing)}; "
+                         f"header is '{lines[0].strip()}'")
+    rows = []
+    for number, line in enumerate(lines[1:], start=2):
+        if not line.strip():
+            continue
+        fields = [f.strip() for f in line.split(",")]
+        if len(fields) != len(header):
+            raise InputError(f"{path}: line {number}: {len(fields)} fields, the header has "
+                             f"{len(header)}")
+        rows.append((number, dict(zip(header, fields))))
+    if not rows:
+        raise InputError(f"{path}: no data lines after the header")
+    return rows
+
+
+def parse_number(text, path, line, column, *, optional=False):
+    """A finite float from a CSV field; empty -> None if optional."""
+    if text == "":
+        if optional:
+            return None
+        raise InputError(f"{path}: line {line}: column '{column}' is empty; a number is "
+                         "required")
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{path}: line {line}: column '{column}' is not a number; "
+                         f"'{text}'") from None
+    if not math.isfinite(value):
+        raise InputError(f"{path}: line {line}: column '{column}' is not finite (NaN and "
+                         f"infinity are rejected); '{text}'")
+    return value
+
+
+def parse_count(text, path, line, column):
+    try:
+        value = int(text)
+    except ValueError:
+        raise InputError(f"{path}: line {line}: column '{column}' is not a non-negative "
+                         f"integer; '{text}'") from None
+    if value < 0:
+        raise InputError(f"{path}: line {line}: column '{column}' must be >= 0; '{text}'")
+    return value
+
+
+def require_choice(text, choices, path, line, column):
+    if text not in choices:
+        raise InputError(f"{path}: line {line}: column '{column}' must be one of "
+                         f"{', '.join(choices)}; '{text}'")
+    return text
+
+
+def require_label(text, path, line, column):
+    if not text:
+        raise InputError(f"{path}: line {line}: column '{column}' is empty")
+    return text
+
+
+@dataclasses.dataclass
+class ResultRow:
+    line: int
+    id: str
+    measurand: str
+    unit: str
+    correction_applied: bool
+    values: dict          # column -> float or None (numeric columns)
+    text: dict            # column -> text as in the file
+
+
+@dataclasses.dataclass
+class Measurement:
+    id: str
+    location: str
+    orientation_deg: float
+    height: str
+    mode: str
+    rows: dict            # measurand -> ResultRow
+
+    def value(self, measurand, column):
+        row = self.rows.get(measurand)
+        return None if row is None else row.values.get(column)
+
+
+@dataclasses.dataclass
+class SummaryRow:
+    line: int
+    factor: str
+    level: str
+    measurand: str
+    treatment: str
+    n: int
+    share: float
+    mean: float
+    rms: float
+
+
+@dataclasses.dataclass
+class TreatmentRow:
+    line: int
+    measurand: str
+    treatment: str
+    n: int
+    mean: float
+    rms: float
+    share: float
+    mean_error: float
+    rms_error: float
+    unit: str
+
+
+@dataclasses.dataclass
+class Residuals:
+    angle_deg: list
+    deviation_um: list
+    filtered_um: list
+
+
+@dataclasses.dataclass
+class Run:
+    outdir: str
+    measurements: list    # ordered: location, orientation, height, mode
+    locations: list       # ordered, centre first
+    centre: str
+    centre_found: bool
+    result_columns: list  # header of results.csv
+    result_rows: list     # ResultRow in file order
+    summary: list
+    treatments: list      # [] when treatments.csv is absent
+    run_info: dict        # None when run_info.json is absent
+    coverage_factor: float
+    coverage_factor_source: str
+    coverage_probability: float   # None when run_info.json does not state it
+
+    @property
+    def expected_rms(self):
+        """RMS of E_n with honest uncertainties: 1/k."""
+        return 1.0 / self.coverage_factor
+
+    @property
+    def expected_share(self):
+        """P(|E_n| <= 1) with honest uncertainties: erf(k / sqrt 2)."""
+        return math.erf(self.coverage_factor / math.sqrt(2.0))
+
+    def honest(self):
+        """'mean 0, RMS 0.5, share |E_n| <= 1 of 95.4 %' for the run's k."""
+        return (f"E_n ~ N(0, {self.expected_rms:.3g}²): mean 0, RMS {self.expected_rms:.3g}, "
+                f"share |E_n| ≤ 1 of {100 * self.expected_share:.1f} %")
+
+
+def rank(value, order):
+    """Sort key: the position in a known order, unknown values after it, alphabetically."""
+    return (order.index(value), "") if value in order else (len(order), value)
+
+
+def is_centre_label(label):
+    lowered = label.lower()
+    return lowered == "c" or "centre" in lowered or "center" in lowered
+
+
+def read_results(path):
+    rows = []
+    columns = None
+    for line, fields in read_csv_table(path, RESULTS_COLUMNS):
+        if columns is None:
+            columns = list(fields.keys())
+        mid = fields["id"]
+        if not ID_PATTERN.match(mid):
+            raise InputError(f"{path}: line {line}: column 'id' must match [A-Za-z0-9_.-]+; "
+                             f"'{mid}'")
+        for column in ("location", "height", "mode"):
+            require_label(fields[column], path, line, column)
+        measurand = require_choice(fields["measurand"], MEASURANDS, path, line, "measurand")
+        unit = require_choice(fields["unit"], MEASURAND_UNITS[measurand], path, line, "unit")
+        applied = require_choice(fields["correction_applied"], ("true", "false"), path, line,
+                                 "correction_applied") == "true"
+        values = {c: parse_number(fields[c], path, line, c) for c in RESULTS_REQUIRED_NUMBERS}
+        values.update({c: parse_number(fields[c], path, line, c, optional=True)
+                       for c in RESULTS_OPTIONAL_NUMBERS})
+        for column in ("u", "u_reference", "u_corrected"):
+            if values[column] is not None and values[column] < 0.0:
+                raise InputError(f"{path}: line {line}: column '{column}' must be >= 0; "
+                                 f"'{fields[column]}'")
+        if values["interval_low"] > values["interval_high"]:
+            raise InputError(f"{path}: line {line}: interval_low > interval_high; "
+                             f"'{fields['interval_low']}' > '{fields['interval_high']}'")
+        rows.append(ResultRow(line, mid, measurand, unit, applied, values, fields))
+
+    measurements = {}
+    for row in rows:
+        f = row.text
+        m = measurements.get(row.id)
+        if m is None:
+            measurements[row.id] = Measurement(row.id, f["location"],
+                                               row.values["orientation_deg"], f["height"],
+                                               f["mode"], {row.measurand: row})
+            continue
+        if row.measurand in m.rows:
+            raise InputError(f"{path}: line {row.line}: measurement '{row.id}' has a second "
+                             f"'{row.measurand}' row (first at line "
+                             f"{m.rows[row.measurand].line})")
+        first = next(iter(m.rows.values()))
+        for column, value in (("location", m.location), ("height", m.height),
+                              ("mode", m.mode)):
+            if f[column] != value:
+                raise InputError(f"{path}: line {row.line}: measurement '{row.id}' has "
+                                 f"{column} '{f[column]}' but '{value}' at line {first.line}")
+        if row.values["orientation_deg"] != m.orientation_deg:
+            raise InputError(f"{path}: line {row.line}: measurement '{row.id}' has "
+                             f"orientation_deg {f['orientation_deg']} but "
+                             f"{m.orientation_deg:g} at line {first.line}")
+        m.rows[row.measurand] = row
+    return columns, rows, list(measurements.values())
+
+
+def read_summary(path):
+    result = []
+    for line, f in read_csv_table(path, SUMMARY_COLUMNS):
+        factor = require_choice(f["factor"], FACTORS, path, line, "factor")
+        level = require_label(f["level"], path, line, "level")
+        if factor == "all" and level != "all":
+            raise InputError(f"{path}: line {line}: factor 'all' needs level 'all'; '{level}'")
+        measurand = require_choice(f["measurand"], MEASURANDS, path, line, "measurand")
+        treatment = require_choice(f["treatment"], TREATMENTS, path, line, "treatment")
+        n = parse_count(f["n"], path, line, "n")
+        stats = parse_statistics(f, path, line, optional=n == 0)
+        result.append(SummaryRow(line, factor, level, measurand, treatment, n, *stats))
+    return result
+
+
+def parse_statistics(f, path, line, *, optional):
+    share = parse_number(f["share_abs_En_le_1"], path, line, "share_abs_En_le_1",
+                         optional=optional)
+    if share is not None and not 0.0 <= share <= 1.0:
+        raise InputError(f"{path}: line {line}: column 'share_abs_En_le_1' must be a fraction "
+                         f"in [0, 1]; '{f['share_abs_En_le_1']}'")
+    mean = parse_number(f["mean_En"], path, line, "mean_En", optional=optional)
+    rms = parse_number(f["rms_En"], path, line, "rms_En", optional=optional)
+    if rms is not None and rms < 0.0:
+        raise InputError(f"{path}: line {line}: column 'rms_En' must be >= 0; '{f['rms_En']}'")
+    return share, mean, rms
+
+
+def read_treatments(path):
+    result = []
+    for line, f in read_csv_table(path, TREATMENTS_COLUMNS):
+        measurand = require_choice(f["measurand"], MEASURANDS, path, line, "measurand")
+        treatment = require_choice(f["treatment"], TREATMENTS, path, line, "treatment")
+        unit = require_choice(f["unit"], MEASURAND_UNITS[measurand], path, line, "unit")
+        n = parse_count(f["n"], path, line, "n")
+        share, mean, rms = parse_statistics(f, path, line, optional=n == 0)
+        mean_error = parse_number(f["mean_error"], path, line, "mean_error", optional=True)
+        rms_error = parse_number(f["rms_error"], path, line, "rms_error", optional=True)
+        if rms_error is not None and rms_error < 0.0:
+            raise InputError(f"{path}: line {line}: column 'rms_error' must be >= 0; "
+                             f"'{f['rms_error']}'")
+        result.append(TreatmentRow(line, measurand, treatment, n, mean, rms, share,
+                                   mean_error, rms_error, unit))
+    return result
+
+
+def read_samples(path):
+    """Monte Carlo samples: ({'diameter': [...mm], 'roundness': [...um]})."""
+    diameter, roundness = [], []
+    for line, f in read_csv_table(path, SAMPLES_COLUMNS):
+        diameter.append(parse_number(f["diameter_mm"], path, line, "diameter_mm"))
+        roundness.append(parse_number(f["roundness_um"], path, line, "roundness_um"))
+    if len(diameter) < 2:
+        raise InputError(f"{path}: {len(diameter)} sample line(s); a histogram needs >= 2")
+    return {"diameter": diameter, "roundness": roundness}
+
+
+def read_residuals(path):
+    angle, deviation, filtered = [], [], []
+    previous = None
+    for line, f in read_csv_table(path, RESIDUALS_COLUMNS):
+        a = parse_number(f["angle_deg"], path, line, "angle_deg")
+        if not -ANGLE_SLACK_DEG <= a <= 360.0 + ANGLE_SLACK_DEG:
+            raise InputError(f"{path}: line {line}: column 'angle_deg' must lie in 0..360; "
+                             f"'{f['angle_deg']}'")
+        if previous is not None and a < previous:
+            raise InputError(f"{path}: line {line}: angles must be in increasing order; "
+                             f"{f['angle_deg']} follows {previous:g}")
+        previous = a
+        angle.append(a)
+        deviation.append(parse_number(f["deviation_um"], path, line, "deviation_um"))
+        filtered.append(parse_number(f["filtered_deviation_um"], path, line,
+                                     "filtered_deviation_um"))
+    if len(angle) < 3:
+        raise InputError(f"{path}: {len(angle)} point(s); a profile needs >= 3")
+    return Residuals(angle, deviation, filtered)
+
+
+def read_run_info(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not UTF-8 text") from None
+    except OSError as e:
+        raise InputError(f"{path}: cannot read: {e.strerror}") from None
+    try:
+        info = json.loads(text)
+    except json.JSONDecodeError as e:
+        raise InputError(f"{path}: line {e.lineno}, column {e.colno}: invalid JSON: {e.msg}") \
+            from None
+    if not isinstance(info, dict):
+        raise InputError(f"{path}: line 1: expected a JSON object; found "
+                         f"{type(info).__name__}")
+    return info
+
+
+def run_info_number(run_info, keys, accept):
+    """(value, key) of the first of keys (top level, then under 'evaluation') that holds a
+    finite number accepted by accept(value); (None, None) if none does."""
+    if not run_info:
+        return None, None
+    places = [("", run_info)]
+    if isinstance(run_info.get("evaluation"), dict):
+        places.append(("evaluation.", run_info["evaluation"]))
+    for prefix, place in places:
+        for key in keys:
+            value = place.get(key)
+            if isinstance(value, (int, float)) and not isinstance(value, bool) \
+                    and math.isfinite(value) and accept(value):
+                return float(value), prefix + key
+    return None, None
+
+
+def coverage_factor_of(run_info):
+    """k of E_n: run_info.json's k / coverage_factor (or evaluation.k), else 2."""
+    k, key = run_info_number(run_info, ("k", "coverage_factor"), lambda v: v > 0)
+    if k is None:
+        return 2.0, "default k = 2: run_info.json does not state k"
+    return k, f"run_info.json {key}"
+
+
+def coverage_probability_of(run_info):
+    """p of the Monte Carlo coverage interval from run_info.json, or None."""
+    p, _ = run_info_number(run_info, ("coverage_probability",), lambda v: 0 < v < 1)
+    return p
+
+
+def load_run(outdir):
+    if not os.path.isdir(outdir):
+        raise InputError(f"{outdir}: not a directory (expected the output directory of "
+                         "`vcmm validate` or `vcmm demo`)")
+    columns, rows, measurements = read_results(os.path.join(outdir, "results.csv"))
+    summary = read_summary(os.path.join(outdir, "summary.csv"))
+    treatments_path = os.path.join(outdir, "treatments.csv")
+    treatments = read_treatments(treatments_path) if os.path.exists(treatments_path) else []
+    info_path = os.path.join(outdir, "run_info.json")
+    run_info = read_run_info(info_path) if os.path.exists(info_path) else None
+
+    appearance = list(dict.fromkeys(m.location for m in measurements))
+    centres = [loc for loc in appearance if is_centre_label(loc)]
+    centre = centres[0] if centres else appearance[0]
+    locations = [centre] + [loc for loc in appearance if loc != centre]
+    measurements.sort(key=lambda m: (locations.index(m.location), m.orientation_deg,
+                                     rank(m.height, HEIGHT_ORDER), rank(m.mode, MODE_ORDER),
+                                     m.id))
+    k, k_source = coverage_factor_of(run_info)
+    return Run(outdir, measurements, locations, centre, bool(centres), columns, rows, summary,
+               treatments, run_info, k, k_source, coverage_probability_of(run_info))
+
+
+# --------------------------------------------------------------------------------------------
+# Writing
+# --------------------------------------------------------------------------------------------
+
+def _umask():
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def write_atomically(path, write):
+    """Calls write(binary_file) on a temporary file beside path, then os.replace(tmp, path)."""
+    directory = os.path.dirname(os.path.abspath(path))
+    try:
+        os.makedirs(directory, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=".tmp",
+                                   dir=directory)
+    except OSError as e:
+        raise OutputError(f"{path}: cannot write: {e.strerror}") from None
+    try:
+        with os.fdopen(fd, "wb") as f:
+            write(f)
+        os.chmod(tmp, 0o666 & ~_umask())
+        os.replace(tmp, path)
+    except OSError as e:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise OutputError(f"{path}: cannot write: {e.strerror}") from None
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+# --------------------------------------------------------------------------------------------
+# Choosing what to show
+# --------------------------------------------------------------------------------------------
+
+def preference(m):
+    """Sort key of a representative measurement: scanning, middle height, small angle."""
+    return (rank(m.mode, MODE_ORDER), rank(m.height, HEIGHT_PREFERENCE), m.orientation_deg,
+            m.id)
+
+
+def describe(m):
+    return (f"{m.id} (location {m.location}, orientation {m.orientation_deg:g}°, height "
+            f"{m.height}, {m.mode.replace('_', '-')})")
+
+
+def choose_location_pair(run, available):
+    """(first measurement, second measurement, note): the centre and the first other location
+    with residual profiles at the same orientation, height and mode (scanning, middle height,
+    small orientation preferred).  When the centre has no such pair, the first location that
+    has one stands in for it, and the note says so."""
+    for first in run.locations:
+        candidates = sorted((m for m in run.measurements
+                             if m.location == first and m.id in available), key=preference)
+        for c in candidates:
+            for other_location in run.locations:
+                if other_location == first:
+                    continue
+                for m in run.measurements:
+                    if (m.location == other_location and m.id in available
+                            and m.orientation_deg == c.orientation_deg
+                            and m.height == c.height and m.mode == c.mode):
+                        if not run.centre_found:
+                            note = (f"No location is labelled C/centre/center; location "
+                                    f"'{first}' stands in for the centre. ")
+                        elif first != run.centre:
+                            note = (f"The centre '{run.centre}' has no residual profile "
+                                    "matching another location's; location "
+                                    f"'{first}' stands in for it. ")
+                        else:
+                            note = ""
+                        role = "centre" if note == "" else "stand-in for the centre"
+                        return c, m, note + (f"Shown: {describe(c)} ({role}) and "
+                                             f"{describe(m)}, the first other location with "
+                                             "a profile at the same orientation, height and "
+                                             "mode.")
+    return None, None, ("no two locations have residual profiles at the same orientation, "
+                        "height and mode")
+
+
+def choose_orientation_set(run, available):
+    """(measurements, note): all orientations at one location, height and mode."""
+    best = None
+    for location in run.locations:
+        groups = {}
+        for m in run.measurements:
+            if m.location == location and m.id in available:
+                groups.setdefault((m.height, m.mode), []).append(m)
+        for (height, mode), ms in groups.items():
+            count = len({m.orientation_deg for m in ms})
+            # Larger is better: enough orientations, the centre, more orientations, then
+            # scanning before touch-trigger and middle before other heights.
+            key = (count >= 2, location == run.centre, count,
+                   -rank(mode, MODE_ORDER)[0], -rank(height, HEIGHT_PREFERENCE)[0])
+            if best is None or key > best[0]:
+                best = (key, location, height, mode, ms)
+    if best is None or not best[0][0]:
+        return [], "no location has residual profiles at two or more orientations"
+    _, location, height, mode, ms = best
+    ms = sorted({m.orientation_deg: m for m in sorted(ms, key=lambda m: m.id)}.values(),
+                key=lambda m: m.orientation_deg)
+    if location == run.centre and run.centre_found:
+        where = "the centre"
+    elif location == run.centre:
+        where = (f"location {location} (no location is labelled C/centre/center; the first "
+                 "location stands in for it)")
+    else:
+        where = (f"location {location} (the centre '{run.centre}' has residual profiles at "
+                 "fewer than two orientations)" if run.centre_found else
+                 f"location {location} (no location is labelled C/centre/center)")
+    return ms, (f"Shown: orientations {', '.join(f'{m.orientation_deg:g}°' for m in ms)} at "
+                f"{where}, height {height}, {mode.replace('_', '-')} "
+                f"(ids {', '.join(m.id for m in ms)}).")
+
+
+def choose_histograms(run, available):
+    """Up to two measurements: one per mode (scanning first), centre and middle preferred."""
+    chosen = []
+    modes = sorted({m.mode for m in run.measurements}, key=lambda x: rank(x, MODE_ORDER))
+    for mode in modes[:2]:
+        candidates = sorted((m for m in run.measurements if m.mode == mode
+                             and m.id in available),
+                            key=lambda m: (m.location != run.centre,) + preference(m))
+        if candidates:
+            chosen.append(candidates[0])
+    return chosen
+
+
+def available_ids(run, subdirectory):
+    directory = os.path.join(run.outdir, subdirectory)
+    if not os.path.isdir(directory):
+        return set()
+    return {m.id for m in run.measurements
+            if os.path.isfile(os.path.join(directory, m.id + ".csv"))}
+
+
+# --------------------------------------------------------------------------------------------
+# Figures
+# --------------------------------------------------------------------------------------------
+
+@dataclasses.dataclass
+class Figure:
+    filename: str
+    title: str
+    caption: str
+
+
+def import_matplotlib():
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        import numpy as np
+    except ImportError as e:
+        raise MissingDependency(f"matplotlib/numpy not available ({e}); run the script with "
+                           "/usr/bin/python3 (Debian python3-matplotlib python3-numpy)") \
+            from None
+    plt.rcParams.update({
+        "font.size": 9, "axes.titlesize": 10, "axes.labelsize": 9, "legend.fontsize": 8,
+        "xtick.labelsize": 8, "ytick.labelsize": 8, "axes.grid": True, "grid.alpha": 0.3,
+        "savefig.dpi": DPI,
+    })
+    return plt, np
+
+
+def save(plt, fig, path):
+    try:
+        write_atomically(path, lambda f: fig.savefig(f, format="png", dpi=DPI,
+                                                     bbox_inches="tight",
+                                                     metadata={"Software": None}))
+    finally:
+        plt.close(fig)
+
+
+def top_legend(fig, handles, ncol, title):
+    """Bold title and a legend in a strip at the top, the axes laid out below them."""
+    height = fig.get_figheight()
+    rows = math.ceil(len(handles) / ncol)
+    strip = (0.35 + 0.22 * rows) / height          # inches of title + legend, as a fraction
+    fig.suptitle(title, y=1.0 - 0.05 / height, va="top", fontweight="bold")
+    fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 1.0 - 0.3 / height),
+               ncol=ncol, frameon=False)
+    fig.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - strip))
+
+
+def marker_of(mode, modes):
+    if mode in MODE_MARKERS:
+        return MODE_MARKERS[mode]
+    others = [m for m in modes if m not in MODE_MARKERS]
+    return EXTRA_MARKERS[others.index(mode) % len(EXTRA_MARKERS)]
+
+
+def nice_ceil(x):
+    """Smallest 1, 2, 2.5 or 5 x 10^e that is >= x (x > 0)."""
+    if not x > 0:
+        return 1.0
+    e = 10.0 ** math.floor(math.log10(x))
+    for m in (1.0, 2.0, 2.5, 5.0, 10.0):
+        if m * e >= x * (1.0 - 1e-12):
+            return m * e
+    return 10.0 * e
+
+
+def figure_en(plt, np, run, path):
+    ms = run.measurements
+    x = np.arange(len(ms))
+    modes = list(dict.fromkeys(m.mode for m in ms))
+    heights = list(dict.fromkeys(m.height for m in ms))
+
+    def has(measurand, column):
+        return any(m.value(measurand, column) is not None for m in ms)
+
+    panels = [
+        ("Diameter", [("uncorrected", "diameter", "En", "C0", True),
+                      ("(a) corrected", "diameter", "En_corrected", "C1", False)]),
+        ("Roundness, uncorrected", [("uncorrected", "roundness", "En", "C0", True)]),
+        ("Roundness, corrected (treatment a: bias from the seed-study virtual experiment)",
+         [("(a) corrected", "roundness", "En_corrected", "C1", False)]),
+    ]
+    has_b, has_c = has("roundness", "En_denoised"), has("roundness", "En_inflated")
+    if has_b or has_c:
+        parts = ((["(b) bias from the denoised profile"] if has_b else [])
+                 + (["(c) no correction, U enlarged by |bias|"] if has_c else []))
+        panels.append((("Roundness, treatments " if len(parts) == 2 else "Roundness, treatment ")
+                       + " and ".join(parts),
+                       [("(b) denoised", "roundness", "En_denoised", "C2", True),
+                        ("(c) U + |b|", "roundness", "En_inflated", "C4", False)]))
+    width = min(24.0, max(10.0, 0.2 * len(ms) + 3.0))
+    fig, axes = plt.subplots(len(panels), 1, sharex=True,
+                             figsize=(width, 2.4 * len(panels) + 1.3))
+    handles = {}
+    clipped_total = 0
+    for ax, (title, series) in zip(axes, panels):
+        ax.axhspan(-1.0, 1.0, color="tab:green", alpha=0.08, lw=0)
+        for y in (-1.0, 1.0):
+            ax.axhline(y, color="tab:red", lw=1.0, ls="--")
+        ax.axhline(0.0, color="0.3", lw=0.8)
+        for boundary in [i - 0.5 for i in range(1, len(ms)) if ms[i].location !=
+                         ms[i - 1].location]:
+            ax.axvline(boundary, color="0.6", lw=0.8)
+        measurands = {s[1] for s in series}
+        refused = [i for i, m in enumerate(ms) for meas in measurands
+                   if meas in m.rows and not m.rows[meas].correction_applied]
+        if any(s[2] == "En_corrected" for s in series) and refused:
+            for i in refused:
+                ax.axvspan(i - 0.45, i + 0.45, color="0.5", alpha=0.25, lw=0)
+            handles["refused"] = plt.Rectangle((0, 0), 1, 1, color="0.5", alpha=0.35)
+        values_all = [m.value(s[1], s[2]) for s in series for m in ms]
+        values_all = [abs(v) for v in values_all if v is not None]
+        if not values_all:
+            ax.text(0.5, 0.5, "no values in results.csv", transform=ax.transAxes,
+                    ha="center", va="center", color="0.4")
+        top = min(EN_AXIS_CAP, max(1.5, 1.2 * max(values_all, default=0.0)))
+        for label, measurand, column, color, filled in series:
+            for mode in modes:
+                idx = [i for i, m in enumerate(ms)
+                       if m.mode == mode and m.value(measurand, column) is not None]
+                if not idx:
+                    continue
+                values = np.array([ms[i].value(measurand, column) for i in idx])
+                shown = np.clip(values, -0.97 * top, 0.97 * top)
+                marker = marker_of(mode, modes)
+                ax.scatter(x[idx], shown, marker=marker, s=30, zorder=3,
+                           facecolors=color if filled else "white", edgecolors=color,
+                           linewidths=1.2)
+                for i, v, s in zip(idx, values, shown):
+                    if v != s:
+                        clipped_total += 1
+                        ax.annotate(f"{v:.3g}", (x[i], s), textcoords="offset points",
+                                    xytext=(4, -3 if v > 0 else 3), fontsize=7,
+                                    color="tab:red", va="top" if v > 0 else "bottom")
+                handles.setdefault(("series", label), plt.Line2D(
+                    [], [], ls="", marker="o", markersize=6,
+                    markerfacecolor=color if filled else "white", markeredgecolor=color,
+                    markeredgewidth=1.2, label=f"E_n {label}"))
+        ax.set_ylim(-top, top)
+        ax.set_ylabel("E_n")
+        ax.set_title(title, loc="left")
+    ax = axes[-1]
+    ax.set_xlim(-0.6, len(ms) - 0.4)
+    multiple_heights = len(heights) > 1
+    minor_labels = [f"{m.orientation_deg:g}" + (f" {m.height[:1]}" if multiple_heights else "")
+                    for m in ms]
+    ax.set_xticks(x, minor_labels, minor=True)
+    centres, names = [], []
+    for location in run.locations:
+        idx = [i for i, m in enumerate(ms) if m.location == location]
+        if idx:
+            centres.append(0.5 * (idx[0] + idx[-1]))
+            names.append(location)
+    ax.set_xticks(centres, names)
+    ax.tick_params(axis="x", which="minor", labelsize=7, labelrotation=90, length=2)
+    # The location names go below the rotated minor labels: ~4.5 pt per 7-pt character.
+    pad = 8.0 + 4.5 * max(len(label) for label in minor_labels)
+    ax.tick_params(axis="x", which="major", length=0, pad=pad, labelsize=9)
+    ax.grid(False, axis="x", which="both")
+    for a in axes:
+        a.grid(False, axis="x")
+    ax.set_xlabel("measurement, grouped by location (bold names); tick label = orientation (°)"
+                  + (", height initial" if multiple_heights else "") + "; marker = mode")
+    for label in ax.get_xticklabels(minor=False):
+        label.set_fontweight("bold")
+    legend = [h for key, h in handles.items() if key != "refused"]
+    for mode in modes:
+        legend.append(plt.Line2D([], [], ls="", marker=marker_of(mode, modes), color="0.2",
+                                 markersize=6, label=mode.replace("_", "-")))
+    legend.append(plt.Rectangle((0, 0), 1, 1, color="tab:green", alpha=0.15,
+                                label="|E_n| ≤ 1"))
+    if "refused" in handles:
+        h = handles["refused"]
+        h.set_label("correction refused (would be negative)")
+        legend.append(h)
+    top_legend(fig, legend, min(len(legend), 6),
+               "E_n per measurement (k = %g)" % run.coverage_factor)
+    save(plt, fig, path)
+    caption = (
+        "E_n = (reference − measured) / √(U_ref² + U²) (positive: the CMM reads low) of every measurement, one panel per "
+        "measurand and treatment: diameter (filled blue: uncorrected; hollow orange: corrected, "
+        "treatment a), roundness uncorrected, roundness corrected by the seed-study bias "
+        "(treatment a, hollow orange)"
+        + (", and roundness with treatment (b) (bias from the virtual experiment on the "
+           "filtered, denoised profile; filled)" if has_b else "")
+        + ((" and" if has_b else ", and roundness with") + " treatment (c) (no correction, "
+           "U enlarged to k·u + |bias|; hollow)" if has_c else "")
+        + ". Measurements are grouped by location (vertical lines), then ordered by "
+        "orientation, height and mode; the marker shape gives the mode. The green band is "
+        "|E_n| ≤ 1: with honest uncertainties about 95 % of the points fall inside it and "
+        f"they scatter symmetrically about 0 with an RMS of about {run.expected_rms:.3g}. "
+        "Points systematically "
+        "on one side reveal a bias; points crowding near 0 reveal overstated uncertainties."
+        + (" Grey columns mark measurements whose correction was refused because it would "
+           "have made the roundness negative." if "refused" in handles else "")
+        + (f" {clipped_total} value(s) beyond ±{EN_AXIS_CAP:g} are drawn at the edge with "
+           "their value written beside them." if clipped_total else "")
+        + f" k = {run.coverage_factor:g} ({run.coverage_factor_source}).")
+    return Figure(os.path.basename(path), "E_n per measurement", caption)
+
+
+def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
+    colors = ["C0", "C3", "C2", "C1", "C4", "C5", "C6", "C7"]
+    largest = max(max(max(abs(v) for v in p.deviation_um), max(abs(v) for v in p.filtered_um))
+                  for _, p in profiles)
+    scale_um = nice_ceil(largest) if largest > 0 else 1.0
+    gain = POLAR_SPAN / scale_um          # radius units per um; base radius 1
+
+    n = len(profiles)
+    fig = plt.figure(figsize=(13.0, max(5.6, 1.7 * n + 1.6)))
+    grid = fig.add_gridspec(n, 2, width_ratios=(1.0, 1.35), hspace=0.15, wspace=0.12)
+    polar = fig.add_subplot(grid[:, 0], projection="polar")
+    theta_base = np.linspace(0.0, 2.0 * np.pi, 361)
+    polar.plot(theta_base, np.ones_like(theta_base), color="0.25", lw=0.8, ls="--")
+    unrolled = []
+    for i, ((m, p), color) in enumerate(zip(profiles, colors)):
+        label = {"locations": f"location {m.location}",
+                 "orientations": f"orientation {m.orientation_deg:g}°"}[kind]
+        angle = np.radians(np.array(p.angle_deg))
+        deviation = np.array(p.deviation_um)
+        filtered = np.array(p.filtered_um)
+        polar.scatter(angle, 1.0 + gain * deviation, s=3, color=color, alpha=0.25, lw=0)
+        closed_angle = np.append(angle, angle[0] + 2.0 * np.pi)
+        closed = np.append(filtered, filtered[0])
+        polar.plot(closed_angle, 1.0 + gain * closed, color=color, lw=1.5,
+                   label=f"{label} ({m.id})")
+        ax = fig.add_subplot(grid[i, 1], sharex=unrolled[0] if unrolled else None,
+                             sharey=unrolled[0] if unrolled else None)
+        unrolled.append(ax)
+        ax.axhline(0.0, color="0.3", lw=0.8)
+        ax.scatter(p.angle_deg, deviation, s=5, color=color, alpha=0.3, lw=0,
+                   label="unfiltered")
+        ax.plot(p.angle_deg, filtered, color=color, lw=1.4, label="filtered")
+        ax.text(0.01, 0.95, f"{label}: {m.id}", transform=ax.transAxes, va="top",
+                fontsize=8, bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+        ax.text(0.99, 0.95, f"filtered peak-to-valley {np.ptp(filtered):.3f} µm",
+                transform=ax.transAxes, va="top", ha="right", fontsize=8,
+                bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+        ax.set_ylabel("deviation (µm)")
+        if i < n - 1:
+            ax.tick_params(labelbottom=False)
+    unrolled[0].set_xlim(0.0, 360.0)
+    unrolled[0].set_xticks(range(0, 361, 45))
+    unrolled[0].set_ylim(-1.35 * largest, 1.35 * largest)
+    unrolled[-1].set_xlabel("angle about the reference-circle centre (°)")
+    unrolled[0].legend(loc="lower right", ncol=2, fontsize=7, markerscale=2)
+    polar.set_ylim(0.0, 1.0 + 1.3 * POLAR_SPAN)
+    polar.set_yticks([1.0 - POLAR_SPAN, 1.0, 1.0 + POLAR_SPAN])
+    polar.set_yticklabels([f"−{scale_um:g} µm", "0", f"+{scale_um:g} µm"], fontsize=7)
+    polar.set_rlabel_position(112.5)
+    for label in polar.get_yticklabels():
+        label.set_bbox({"facecolor": "white", "alpha": 0.8, "lw": 0, "pad": 1})
+    polar.set_thetagrids(range(0, 360, 45))
+    polar.set_title(f"polar: deviation magnified, ±{scale_um:g} µm = ±{POLAR_SPAN:.0%} of "
+                    "the base circle", fontsize=9)
+    polar.legend(loc="upper center", bbox_to_anchor=(0.5, -0.06), fontsize=7, ncol=1,
+                 frameon=False)
+    fig.suptitle(title, fontweight="bold")
+    save(plt, fig, path)
+    caption = (
+        "Radial deviations of the corrected measured profile about the reference circle, "
+        + ("at two locations (same orientation, height and mode)" if kind == "locations"
+           else "at one location, every orientation")
+        + ". Left: polar plot, the dashed base circle is zero deviation and the deviation is "
+        f"magnified so that ±{scale_um:g} µm spans ±{POLAR_SPAN:.0%} of the base radius "
+        "(the radius itself is not to scale); right: the same profiles unrolled, angle "
+        "against deviation in µm. Lines are the filtered deviations, faint points the "
+        "unfiltered ones. "
+        + ("A form that stays put between the locations belongs to the ring; one that "
+           "changes (e.g. an added 2-lobe oval) comes from the machine's error map at that "
+           "location. " if kind == "locations" else
+           "The angles are those of the residual files (about the reference-circle centre): "
+           "if they are machine coordinates, the ring's own form turns with the orientation "
+           "(its lobes shift by the orientation angle) while a machine error stays at the "
+           "same angle; in workpiece coordinates it is the other way round. ")
+        + selection_note)
+    return Figure(os.path.basename(path), title, caption)
+
+
+def figure_histogram(plt, np, run, m, samples, path):
+    k = run.coverage_factor
+    p = run.coverage_probability
+    interval_label = ("coverage interval" if p is None else
+                      f"{100 * p:g} % coverage interval")
+    fig, axes = plt.subplots(1, 2, figsize=(13.0, 4.6))
+    warnings = []
+    handles = {}
+    for ax, measurand in zip(axes, MEASURANDS):
+        row = m.rows.get(measurand)
+        if row is None:
+            ax.text(0.5, 0.5, f"no {measurand} row in results.csv", transform=ax.transAxes,
+                    ha="center", va="center")
+            continue
+        v = row.values
+        if measurand == "diameter":
+            # Display in um relative to the reference: differences are sub-um on ~100 mm.
+            origin, factor = v["reference"], 1000.0
+            xlabel = (f"diameter − reference (µm); reference D = {v['reference']:.6f} mm")
+        else:
+            origin, factor = 0.0, 1.0
+            xlabel = "roundness RONt (µm)"
+        data = (np.array(samples[measurand]) - origin) * factor
+
+        def shown(value):
+            return (value - origin) * factor
+
+        bins = int(min(80, max(10, round(math.sqrt(len(data))))))
+        ax.hist(data, bins=bins, color="0.75", edgecolor="0.55", lw=0.4, zorder=2)
+        ref = shown(v["reference"])
+        band = k * v["u_reference"] * factor
+        handles["refband"] = ax.axvspan(ref - band, ref + band, color="tab:red", alpha=0.12,
+                                        lw=0, zorder=1, label=f"reference ± U_ref (k = {k:g})")
+        lines = [
+            ("reference", v["reference"], "tab:red", "-", 1.8),
+            ("estimate from data", v["estimate"], "black", "-", 1.8),
+            ("Monte Carlo mean", v["mc_mean"], "tab:blue", "--", 1.6),
+            (interval_label, v["interval_low"], "tab:blue", ":", 1.6),
+            (None, v["interval_high"], "tab:blue", ":", 1.6),
+        ]
+        if v["corrected"] is not None and row.correction_applied:
+            lines.append(("corrected estimate (a)", v["corrected"], "tab:green", "-", 1.6))
+        if v["true_value"] is not None:
+            lines.append(("true value", v["true_value"], "tab:purple", "-.", 1.6))
+        for label, value, color, style, width in lines:
+            h = ax.axvline(shown(value), color=color, ls=style, lw=width, zorder=3)
+            if label:
+                h.set_label(label)
+                handles.setdefault(label, h)
+        # Consistency of the samples file with results.csv: their mean should agree with
+        # mc_mean within a few standard errors u/sqrt(M) (5 here: a chance of 6e-7).
+        mean = float(np.mean(samples[measurand]))
+        standard_error = v["u"] / math.sqrt(len(data)) if v["u"] > 0 else 0.0
+        if abs(mean - v["mc_mean"]) > 5.0 * standard_error + 1e-12 * abs(v["mc_mean"]):
+            warnings.append(f"the mean of the {measurand} samples ({mean:.7g}) differs from "
+                            f"results.csv mc_mean ({v['mc_mean']:.7g}) by more than 5 "
+                            "standard errors")
+        unit = "µm"
+        u_shown = v["u"] * factor
+        ax.set_title(f"{measurand}: u = {u_shown:.3g} {unit}, bias = "
+                     f"{v['bias'] * factor:+.3g} {unit}, E_n = {v['En']:.2f}", fontsize=9)
+        if not row.correction_applied:
+            ax.text(0.99, 0.97, "correction refused\n(would be negative)",
+                    transform=ax.transAxes, ha="right", va="top", fontsize=8,
+                    color="tab:green")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(f"trials (of M = {len(data)})")
+    order = ["reference", "refband", "estimate from data", "Monte Carlo mean",
+             interval_label, "corrected estimate (a)", "true value"]
+    fig.legend(handles=[handles[key] for key in order if key in handles],
+               loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4, frameon=False)
+    fig.suptitle(f"Monte Carlo samples of {describe(m)}", fontweight="bold")
+    fig.tight_layout()
+    save(plt, fig, path)
+    caption = (
+        f"Histograms of the M = {len(samples['diameter'])} Monte Carlo trials of "
+        f"{describe(m)}: diameter (shown in µm relative to the reference diameter) and "
+        "roundness. Vertical lines: the estimate from the measured data (black), the Monte "
+        "Carlo mean (blue dashed; its distance from the estimate is the bias), the ends of "
+        f"the {interval_label} (blue dotted"
+        + ("" if p is not None else "; its coverage probability is not stated in "
+           "run_info.json") + "), the corrected estimate = estimate − bias "
+        "(green, when the correction was applied), the reference value (red) with its "
+        f"expanded uncertainty U_ref = {k:g}·u_ref (red band)"
+        + (" and the true value of the simulation (purple dash-dot)"
+           if any(m.value(x, "true_value") is not None for x in MEASURANDS) else "")
+        + ". A roundness histogram lying to the right of the estimate shows the noise bias: "
+        "noise tends to increase a peak-to-valley value, in the simulation as on the real "
+        "machine." + "".join(f" Warning: {w}." for w in warnings))
+    return Figure(os.path.basename(path), f"Monte Carlo histogram, {m.id}", caption)
+
+
+def figure_treatments(plt, np, run, path):
+    rows = run.treatments
+    treatments = sorted({r.treatment for r in rows}, key=lambda t: rank(t, TREATMENTS))
+    measurands = [x for x in MEASURANDS if any(r.measurand == x for r in rows)]
+    lookup = {(r.measurand, r.treatment): r for r in rows}
+    has_error = any(r.rms_error is not None for r in rows)
+    fig, axes = plt.subplots(2 if has_error else 1, 3, figsize=(13.0, 7.6 if has_error
+                                                                 else 4.0))
+    axes = np.atleast_2d(axes)
+    x = np.arange(len(treatments))
+    width = 0.8 / max(1, len(measurands))
+    colors = {"diameter": "C0", "roundness": "C1"}
+    panels = [("mean E_n", lambda r: r.mean, EXPECTED_MEAN_EN, "honest 0"),
+              ("RMS of E_n", lambda r: r.rms, run.expected_rms,
+               f"honest {run.expected_rms:.3g}"),
+              ("share |E_n| ≤ 1 (%)", lambda r: None if r.share is None else 100 * r.share,
+               100 * run.expected_share, f"honest {100 * run.expected_share:.1f} %")]
+    for ax, (title, get, expected, expected_label) in zip(axes[0], panels):
+        for j, measurand in enumerate(measurands):
+            values = [get(lookup[(measurand, t)]) if (measurand, t) in lookup else None
+                      for t in treatments]
+            positions = x + (j - (len(measurands) - 1) / 2) * width
+            heights = [0.0 if v is None else v for v in values]
+            bars = ax.bar(positions, heights, width * 0.92, color=colors.get(measurand, "C2"),
+                          label=measurand)
+            for bar, value in zip(bars, values):
+                ax.annotate("n/a" if value is None else f"{value:.2f}" if "%" not in title
+                            else f"{value:.1f}",
+                            (bar.get_x() + bar.get_width() / 2, bar.get_height()),
+                            textcoords="offset points",
+                            xytext=(0, 2 if bar.get_height() >= 0 else -9),
+                            ha="center", fontsize=7)
+        ax.axhline(0.0, color="0.3", lw=0.8)
+        ax.axhline(expected, color="tab:red", ls="--", lw=1.2, zorder=4)
+        ax.annotate(expected_label.replace(" ", "\n", 1), (1.0, expected),
+                    xycoords=("axes fraction", "data"), xytext=(3, 0),
+                    textcoords="offset points", ha="left", va="center", color="tab:red",
+                    fontsize=7)
+        ax.set_xticks(x, [TREATMENT_LABELS.get(t, t) for t in treatments], rotation=15)
+        ax.set_title(title)
+        if "%" in title:
+            ax.set_ylim(0, 110)
+        else:
+            low, high = ax.get_ylim()
+            ax.set_ylim(min(low, -0.1), max(high, 0.6) * 1.08)
+    if has_error:
+        for ax, measurand in zip(axes[1], measurands):
+            unit = next(r.unit for r in rows if r.measurand == measurand)
+            factor, unit_shown = (1000.0, "µm") if unit == "mm" else (1.0, "µm")
+            for j, (label, get, color) in enumerate((
+                    ("mean error", lambda r: r.mean_error, "0.45"),
+                    ("RMS error", lambda r: r.rms_error, "0.75"))):
+                values = [get(lookup[(measurand, t)]) if (measurand, t) in lookup else None
+                          for t in treatments]
+                positions = x + (j - 0.5) * 0.4
+                ax.bar(positions, [0.0 if v is None else v * factor for v in values], 0.37,
+                       color=color, label=label)
+            ax.axhline(0.0, color="0.3", lw=0.8)
+            ax.set_xticks(x, [TREATMENT_LABELS.get(t, t) for t in treatments], rotation=15)
+            ax.set_ylabel(f"{unit_shown}")
+            ax.set_title(f"{measurand}: reported value − true value ({unit_shown})")
+        for ax in axes[1][len(measurands):]:
+            ax.axis("off")
+        spare = axes[1][len(measurands)] if len(measurands) < 3 else axes[1][-1]
+        spare.legend(handles=[plt.Rectangle((0, 0), 1, 1, color="0.45", label="mean error"),
+                              plt.Rectangle((0, 0), 1, 1, color="0.75", label="RMS error")],
+                     loc="center left", title="bottom row: error against the truth",
+                     frameon=False)
+    legend = [plt.Rectangle((0, 0), 1, 1, color=colors.get(m, "C2"), label=m)
+              for m in measurands]
+    legend.append(plt.Line2D([], [], color="tab:red", ls="--",
+                             label="expected with honest uncertainties"))
+    top_legend(fig, legend, len(legend), "Bias treatments over the whole run (treatments.csv)")
+    save(plt, fig, path)
+    caption = (
+        "For each measurand and bias treatment — uncorrected; (a) corrected by the bias of "
+        "the seed-study virtual experiment; (b) corrected by the bias of the virtual "
+        "experiment run on the filtered, denoised profile; (c) not corrected, expanded "
+        "uncertainty enlarged to k·u + |bias| — the mean and the RMS of E_n and the share of "
+        "|E_n| ≤ 1 over all measurements. The red dashed lines are what honest "
+        f"uncertainties give ({run.honest()}, k = {run.coverage_factor:g}). An RMS well "
+        f"below {run.expected_rms:.3g} with a share near 100 % means overstated "
+        f"uncertainties; an RMS above {run.expected_rms:.3g} "
+        "or a mean away from 0 means understated uncertainties or a remaining bias."
+        + (" Bottom row: mean and RMS of the error of the reported value against the "
+           "simulation's true value (diameter converted to µm)." if has_error else ""))
+    return Figure(os.path.basename(path), "Bias treatments", caption)
+
+
+def level_order(run, factor, levels):
+    if factor == "location":
+        return sorted(levels, key=lambda x: rank(x, run.locations))
+    if factor == "orientation_deg":
+        def key(level):
+            try:
+                return (0, float(level), level)
+            except ValueError:
+                return (1, 0.0, level)
+        return sorted(levels, key=key)
+    if factor == "height":
+        return sorted(levels, key=lambda x: rank(x, HEIGHT_ORDER))
+    if factor == "mode":
+        return sorted(levels, key=lambda x: rank(x, MODE_ORDER))
+    return sorted(levels)
+
+
+def figure_factors(plt, np, run, path):
+    factors = [f for f in FACTORS[1:] if any(r.factor == f for r in run.summary)]
+    measurands = [x for x in MEASURANDS if any(r.measurand == x for r in run.summary)]
+    treatments = sorted({r.treatment for r in run.summary}, key=lambda t: rank(t, TREATMENTS))
+    colors = {"uncorrected": "C0", "corrected": "C1", "denoised": "C2", "inflated": "C4"}
+    lookup = {(r.factor, r.level, r.measurand, r.treatment): r for r in run.summary}
+    fig, axes = plt.subplots(len(factors), len(measurands), squeeze=False,
+                             figsize=(13.0, 2.9 * len(factors) + 0.8))
+    offsets = np.linspace(-0.3, 0.3, len(treatments)) if len(treatments) > 1 else [0.0]
+    lowest, highest = -1.0, 1.0
+    for row, factor in enumerate(factors):
+        levels = level_order(run, factor, {r.level for r in run.summary if r.factor == factor})
+        x = np.arange(len(levels))
+        for col, measurand in enumerate(measurands):
+            ax = axes[row][col]
+            ax.axhspan(-1.0, 1.0, color="tab:green", alpha=0.06, lw=0)
+            ax.axhline(0.0, color="0.3", lw=0.8)
+            ax.axhline(run.expected_rms, color="tab:red", ls="--", lw=1.0)
+            for offset, treatment in zip(offsets, treatments):
+                color = colors.get(treatment, "C5")
+                for i, level in enumerate(levels):     # a thin line pairs mean and RMS
+                    r = lookup.get((factor, level, measurand, treatment))
+                    if r is not None and r.mean is not None and r.rms is not None:
+                        ax.plot([i + offset] * 2, [r.mean, r.rms], color=color, lw=0.8,
+                                alpha=0.6, zorder=2)
+                for stat, marker, filled in (("mean", "o", True), ("rms", "s", False)):
+                    xs, ys = [], []
+                    for i, level in enumerate(levels):
+                        r = lookup.get((factor, level, measurand, treatment))
+                        value = None if r is None else getattr(r, stat)
+                        if value is not None:
+                            xs.append(i + offset)
+                            ys.append(value)
+                    if xs:
+                        ax.scatter(xs, ys, marker=marker, s=28, zorder=3,
+                                   facecolors=color if filled else "white",
+                                   edgecolors=color, linewidths=1.2)
+                        lowest, highest = min(lowest, min(ys)), max(highest, max(ys))
+            labels = []
+            for level in levels:
+                r = lookup.get((factor, level, measurand, "uncorrected")) or next(
+                    (lookup[(factor, level, measurand, t)] for t in treatments
+                     if (factor, level, measurand, t) in lookup), None)
+                labels.append(level.replace("_", "-") + ("" if r is None else f"\nn={r.n}"))
+            ax.set_xticks(x, labels, fontsize=7 if len(levels) > 8 else 8)
+            ax.set_xlim(-0.6, len(levels) - 0.4)
+            ax.grid(False, axis="x")
+            ax.set_title(f"{measurand} by {factor.replace('_deg', ' (°)')}", loc="left")
+            ax.set_ylabel("E_n")
+    for ax in axes.flat:
+        ax.set_ylim(min(lowest * 1.1, -1.1), max(highest * 1.1, 1.1))
+    legend = [plt.Line2D([], [], ls="", marker="s", markersize=7, color=colors.get(t, "C5"),
+                         label=TREATMENT_LABELS.get(t, t)) for t in treatments]
+    legend += [plt.Line2D([], [], ls="", marker="o", color="0.2", markersize=6,
+                          label="mean E_n (filled)"),
+               plt.Line2D([], [], ls="", marker="s", markerfacecolor="white",
+                          markeredgecolor="0.2", markersize=6, label="RMS E_n (hollow)"),
+               plt.Line2D([], [], color="tab:red", ls="--",
+                          label=f"honest RMS {run.expected_rms:.3g}")]
+    top_legend(fig, legend, min(len(legend), 7),
+               "Mean and RMS of E_n by factor level (summary.csv)")
+    save(plt, fig, path)
+    caption = (
+        "Mean (filled circles) and RMS (hollow squares) of E_n for each level of each factor "
+        "of the run — location, orientation, height, mode — per measurand, one colour per "
+        "bias treatment; n under each level is the number of measurements. With honest "
+        f"uncertainties the mean is near 0 and the RMS near {run.expected_rms:.3g} (red dashed "
+        "line; 1/k) at every level, within the scatter of n values (the standard error of a "
+        f"mean of n E_n values is about {run.expected_rms:.3g}/√n). A level whose mean or RMS "
+        "stands out points at an effect the uncertainty budget misses there, e.g. a "
+        "location-dependent machine error.")
+    return Figure(os.path.basename(path), "E_n by factor level", caption)
+
+
+def make_figures(run, notes):
+    """Chooses what to show and reads every file it needs first (so that bad input stops the
+    run before anything is written), then draws the figures; returns [Figure]."""
+    directory = os.path.join(run.outdir, "figures")
+    plans = [(figure_en, (os.path.join(directory, "en_per_measurement.png"),))]
+
+    def profiles(chosen):
+        return [(m, read_residuals(os.path.join(run.outdir, "residuals", m.id + ".csv")))
+                for m in chosen]
+
+    residuals = available_ids(run, "residuals")
+    if len(run.locations) >= 2:
+        c, corner, note = choose_location_pair(run, residuals)
+        if c is None:
+            notes.append(f"residuals_locations.png not drawn: {note}.")
+        else:
+            title = ("centre vs corner location" if run.centre_found else
+                     f"location {c.location} vs location {corner.location} (no centre label)")
+            plans.append((figure_residuals, (
+                profiles([c, corner]), os.path.join(directory, "residuals_locations.png"),
+                "Residuals about the reference circle: " + title, note, "locations")))
+    else:
+        notes.append("residuals_locations.png not drawn: the run has a single location.")
+    chosen, note = choose_orientation_set(run, residuals)
+    if chosen:
+        plans.append((figure_residuals, (
+            profiles(chosen), os.path.join(directory, "residuals_orientations.png"),
+            "Residuals about the reference circle: orientations at one location", note,
+            "orientations")))
+    else:
+        notes.append(f"residuals_orientations.png not drawn: {note}.")
+
+    chosen = choose_histograms(run, available_ids(run, "samples"))
+    if not chosen:
+        notes.append("No Monte Carlo histogram drawn: no samples/<id>.csv file for any "
+                     "measurement of results.csv.")
+    for m in chosen:
+        samples = read_samples(os.path.join(run.outdir, "samples", m.id + ".csv"))
+        plans.append((figure_histogram, (m, samples,
+                                         os.path.join(directory, f"histogram_{m.id}.png"))))
+
+    if run.treatments:
+        plans.append((figure_treatments, (os.path.join(directory, "treatments.png"),)))
+    else:
+        notes.append("treatments.png not drawn: no treatments.csv (only `vcmm demo`, which "
+                     "knows the true values, writes it).")
+    if any(r.factor != "all" for r in run.summary):
+        plans.append((figure_factors, (os.path.join(directory, "factors.png"),)))
+    else:
+        notes.append("factors.png not drawn: summary.csv has no factor other than 'all'.")
+
+    plt, np = import_matplotlib()
+    return [draw(plt, np, run, *arguments) for draw, arguments in plans]
+
+
+# --------------------------------------------------------------------------------------------
+# HTML
+# --------------------------------------------------------------------------------------------
+
+CSS = """
+body { font-family: sans-serif; margin: 1.5em auto; max-width: 1400px; padding: 0 1em;
+       color: #222; line-height: 1.4; }
+h1 { font-size: 1.6em; margin-bottom: 0.2em; }
+h2 { margin-top: 1.6em; border-bottom: 1px solid #ccc; }
+table { border-collapse: collapse; font-size: 0.85em; margin: 0.5em 0; }
+th, td { border: 1px solid #ddd; padding: 2px 6px; }
+th { background: #f0f0f0; position: sticky; top: 0; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; font-family: monospace; }
+td.out { background: #fbd5d5; color: #900; font-weight: bold; }
+tr.refused td { font-style: italic; }
+.scroll { max-height: 40em; overflow: auto; border: 1px solid #ccc; }
+figure { margin: 1em 0 2em 0; } figure img { max-width: 100%; border: 1px solid #ddd; }
+figcaption { max-width: 75em; font-size: 0.9em; }
+.note { color: #555; font-size: 0.9em; } code { font-size: 0.95em; }
+"""
+
+
+def esc(value):
+    return html.escape(str(value), quote=True)
+
+
+def href(path):
+    return esc(urllib.parse.quote(path))
+
+
+def flatten(prefix, value, out):
+    if isinstance(value, dict) and value:
+        for key, item in value.items():
+            flatten(f"{prefix}.{key}" if prefix else str(key), item, out)
+    else:
+        out.append((prefix, value if isinstance(value, str) else
+                    json.dumps(value, ensure_ascii=False)))
+
+
+def number_text(value, column, unit):
+    if value is None:
+        return ""
+    if column in EN_COLUMNS or column.startswith("zeta"):
+        return f"{value:.2f}"
+    if column == "orientation_deg":
+        return f"{value:g}"
+    # mm to 1 nm, um to 0.1 nm: below any uncertainty in this field.
+    return f"{value:.6f}" if unit == "mm" else f"{value:.4f}"
+
+
+def html_table(header, rows):
+    """rows: list of lists of (text, css_class or None)."""
+    out = ["<table><thead><tr>"]
+    out += [f"<th>{esc(h)}</th>" for h in header]
+    out.append("</tr></thead><tbody>")
+    for cells in rows:
+        out.append("<tr>")
+        for text, css in cells:
+            out.append(f"<td class=\"{esc(css)}\">{esc(text)}</td>" if css else
+                       f"<td>{esc(text)}</td>")
+        out.append("</tr>")
+    out.append("</tbody></table>")
+    return "".join(out)
+
+
+def summary_cells(r):
+    def number(value, digits):
+        return ("", "num") if value is None else (f"{value:.{digits}f}", "num")
+    return [(r.factor, None), (r.level, None), (r.measurand, None),
+            (TREATMENT_LABELS.get(r.treatment, r.treatment), None), (str(r.n), "num"),
+            number(None if r.share is None else 100.0 * r.share, 1), number(r.mean, 3),
+            number(r.rms, 3)]
+
+
+def results_section(run):
+    rows_by_id = {m.id: m for m in run.measurements}
+    order = []
+    for m in run.measurements:
+        for measurand in MEASURANDS:
+            if measurand in m.rows:
+                order.append(m.rows[measurand])
+    numeric = set(RESULTS_REQUIRED_NUMBERS) | set(RESULTS_OPTIONAL_NUMBERS)
+    columns = [c for c in run.result_columns
+               if c not in numeric or any(r.values.get(c) is not None for r in order)]
+    dropped = [c for c in RESULTS_COLUMNS if c not in columns]
+    body = []
+    highlighted = 0
+    for r in order:
+        cells = []
+        for c in columns:
+            if c in numeric:
+                value = r.values.get(c)
+                css = "num"
+                if c in EN_COLUMNS and value is not None and abs(value) > 1.0:
+                    css = "num out"
+                    highlighted += 1
+                cells.append((number_text(value, c, r.unit), css))
+            else:
+                cells.append((r.text.get(c, ""), None))
+        body.append((cells, not r.correction_applied))
+    out = ["<div class=\"scroll\"><table><thead><tr>"]
+    out += [f"<th>{esc(c)}</th>" for c in columns]
+    out.append("</tr></thead><tbody>")
+    for cells, refused in body:
+        out.append("<tr class=\"refused\">" if refused else "<tr>")
+        for text, css in cells:
+            out.append(f"<td class=\"{esc(css)}\">{esc(text)}</td>" if css else
+                       f"<td>{esc(text)}</td>")
+        out.append("</tr>")
+    out.append("</tbody></table></div>")
+    note = (f"<p class=\"note\">{len(order)} rows ({len(rows_by_id)} measurements × "
+            "measurands), ordered by location, orientation, height and mode. Diameter values "
+            "in mm, roundness values in µm (column <code>unit</code>); E_n and ζ are "
+            f"dimensionless. {highlighted} E_n value(s) with |E_n| &gt; 1 are highlighted. "
+            "Rows in italics: correction refused (it would have made the roundness "
+            "negative)."
+            + (f" Columns empty in every row and left out: {esc(', '.join(dropped))}."
+               if dropped else "") + "</p>")
+    return note + "".join(out)
+
+
+def write_html(run, figures, notes, title):
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    parts = ["<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n",
+             f"<title>{esc(title)}</title>\n<style>{CSS}</style>\n</head>\n<body>\n",
+             f"<h1>{esc(title)}</h1>\n",
+             f"<p class=\"note\">Written by {esc(PROG)} on {esc(now)} from the directory "
+             f"<code>{esc(os.path.abspath(run.outdir))}</code>: "
+             f"{len(run.measurements)} measurements at {len(run.locations)} location(s). "
+             "This file is self-contained: the figures are embedded.</p>\n"]
+    parts.append("<nav><p>Contents: <a href=\"#provenance\">provenance</a> · "
+                 "<a href=\"#files\">files</a> · <a href=\"#summary\">summary</a> · "
+                 "<a href=\"#treatments\">treatments</a> · <a href=\"#figures\">figures</a> · "
+                 "<a href=\"#results\">per-measurement results</a></p></nav>\n")
+
+    parts.append("<h2 id=\"provenance\">Provenance</h2>\n")
+    if run.run_info is None:
+        parts.append("<p class=\"note\">No run_info.json in the directory.</p>\n")
+    else:
+        flat = []
+        flatten("", run.run_info, flat)
+        parts.append("<p class=\"note\">From <a href=\"run_info.json\">run_info.json</a>.</p>")
+        parts.append(html_table(["key", "value"], [[(k, None), (v, None)] for k, v in flat]))
+    parts.append(f"<p class=\"note\">E_n uses k = {run.coverage_factor:g} "
+                 f"({esc(run.coverage_factor_source)}).</p>\n")
+
+    parts.append("<h2 id=\"files\">Files</h2>\n<ul>\n")
+    for name, what in (("results.csv", "per-measurement results (table below)"),
+                       ("summary.csv", "E_n statistics by factor level"),
+                       ("treatments.csv", "bias treatments against the truth"),
+                       ("results.json", "results for machines"),
+                       ("summary.json", "summary for machines"),
+                       ("run_info.json", "provenance")):
+        if os.path.exists(os.path.join(run.outdir, name)):
+            parts.append(f"<li><a href=\"{href(name)}\">{esc(name)}</a> — {esc(what)}</li>\n")
+        else:
+            parts.append(f"<li>{esc(name)} — not present</li>\n")
+    for f in figures:
+        parts.append(f"<li><a href=\"{href('figures/' + f.filename)}\">figures/"
+                     f"{esc(f.filename)}</a> — {esc(f.title)}</li>\n")
+    parts.append("</ul>\n")
+
+    parts.append("<h2 id=\"summary\">Summary (summary.csv)</h2>\n")
+    parts.append(f"<p class=\"note\">Share in %. Honest uncertainties give {esc(run.honest())} "
+                 f"(k = {run.coverage_factor:g}).</p>\n")
+    header = ["factor", "level", "measurand", "treatment", "n", "share |E_n| ≤ 1 (%)",
+              "mean E_n", "RMS E_n"]
+    overall = sorted((r for r in run.summary if r.factor == "all"),
+                     key=lambda r: (rank(r.treatment, TREATMENTS),
+                                    rank(r.measurand, MEASURANDS)))
+    parts.append("<h3>Whole run</h3>\n")
+    parts.append(html_table(header, [summary_cells(r) for r in overall]) if overall else
+                 "<p class=\"note\">summary.csv has no 'all' rows.</p>")
+    by_factor = sorted((r for r in run.summary if r.factor != "all"),
+                       key=lambda r: (rank(r.factor, FACTORS),
+                                      level_order(run, r.factor, {x.level for x in run.summary
+                                                                  if x.factor == r.factor}
+                                                  ).index(r.level),
+                                      rank(r.measurand, MEASURANDS),
+                                      rank(r.treatment, TREATMENTS)))
+    if by_factor:
+        parts.append("<h3>By factor level</h3>\n<div class=\"scroll\">")
+        parts.append(html_table(header, [summary_cells(r) for r in by_factor]))
+        parts.append("</div>\n")
+
+    parts.append("<h2 id=\"treatments\">Bias treatments (treatments.csv)</h2>\n")
+    if run.treatments:
+        rows = []
+        for r in sorted(run.treatments, key=lambda r: (rank(r.measurand, MEASURANDS),
+                                                       rank(r.treatment, TREATMENTS))):
+            def number(value, digits):
+                return ("", "num") if value is None else (f"{value:.{digits}f}", "num")
+            digits = 6 if r.unit == "mm" else 4
+            rows.append([(r.measurand, None), (TREATMENT_LABELS.get(r.treatment, r.treatment),
+                                               None), (str(r.n), "num"),
+                         number(r.mean, 3), number(r.rms, 3),
+                         number(None if r.share is None else 100.0 * r.share, 1),
+                         number(r.mean_error, digits), number(r.rms_error, digits),
+                         (r.unit, None)])
+        parts.append("<p class=\"note\">Error = reported value − true value of the "
+                     "simulation, in the unit of the last column.</p>\n")
+        parts.append(html_table(["measurand", "treatment", "n", "mean E_n", "RMS E_n",
+                                 "share |E_n| ≤ 1 (%)", "mean error", "RMS error", "unit"],
+                                rows))
+    else:
+        parts.append("<p class=\"note\">No treatments.csv: only <code>vcmm demo</code>, "
+                     "which knows the true values, writes it.</p>\n")
+
+    parts.append("<h2 id=\"figures\">Figures</h2>\n")
+    for note in notes:
+        parts.append(f"<p class=\"note\">{esc(note)}</p>\n")
+    for f in figures:
+        with open(os.path.join(run.outdir, "figures", f.filename), "rb") as png:
+            data = base64.b64encode(png.read()).decode("ascii")
+        parts.append(f"<figure id=\"{esc(f.filename)}\"><h3>{esc(f.title)}</h3>"
+                     f"<img src=\"data:image/png;base64,{data}\" alt=\"{esc(f.title)}\">"
+                     f"<figcaption>{esc(f.caption)} (<a href=\"{href('figures/' + f.filename)}"
+                     f"\">{esc(f.filename)}</a>)</figcaption></figure>\n")
+
+    parts.append("<h2 id=\"results\">Per-measurement results (results.csv)</h2>\n")
+    parts.append(results_section(run))
+    parts.append("\n</body>\n</html>\n")
+    text = "".join(parts)
+    write_atomically(os.path.join(run.outdir, "report.html"),
+                     lambda f: f.write(text.encode("utf-8")))
+
+
+# --------------------------------------------------------------------------------------------
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog=PROG,
+        description="Draw the validation figures (OUTDIR/figures/*.png) and write a "
+                    "self-contained HTML report (OUTDIR/report.html) for the output "
+                    "directory of `vcmm validate` or `vcmm demo`.",
+        epilog="Exit codes: 0 success, 1 internal error, 2 command-line error, 3 invalid "
+               "input or unwritable output.")
+    parser.add_argument("outdir", metavar="OUTDIR")
+    parser.add_argument("--title", default=None, help="report title")
+    args = parser.parse_args(argv)
+    title = args.title if args.title is not None else (
+        "vcmm validation report — " + os.path.basename(os.path.abspath(args.outdir)))
+    try:
+        run = load_run(args.outdir)
+        notes = []
+        figures = make_figures(run, notes)
+        write_html(run, figures, notes, title)
+    except (InputError, OutputError) as e:
+        print(f"{PROG}: error: {e}", file=sys.stderr)
+        return 3
+    except MissingDependency as e:
+        print(f"{PROG}: error: {e}", file=sys.stderr)
+        return 1
+    except Exception:   # a bug: say so and keep the traceback for the report
+        print(f"{PROG}: internal error (a bug; please report it with the input):",
+              file=sys.stderr)
+        traceback.print_exc()
+        return 1
+    for f in figures:
+        print(os.path.join(run.outdir, "figures", f.filename))
+    print(os.path.join(run.outdir, "report.html"))
+    for note in notes:
+        print(f"{PROG}: note: {note}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,134 @@
+// The `vcmm uncertainty`, `vcmm validate` and `vcmm demo` contracts (docs/cli.md): the JSON
+// report and samples file, the same numbers for any thread count, exit 2 for bad options,
+// exit 3 for bad input files (named), no output file on error; a small demo end to end and
+// its resume.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/cli_run.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vcmm::test::CliRun;
+using vcmm::test::scratch_dir;
+using vcmm::test::slurp;
+
+CliRun run(const std::string& args) { return vcmm::test::run_command(VCMM_EXE, args); }
+
+const std::string kModel = std::string(VCMM_SOURCE_DIR) + "/examples/cmm_model.json";
+
+/// A 360-point scanning measurement of the ring, made once with `vcmm simulate`.
+const fs::path& measurement() {
+  static const fs::path p = [] {
+    const fs::path out = scratch_dir() / "ring360.csv";
+    const CliRun r = run("simulate --model '" + kModel +
+                         "' --ring 171 --points 360 --location 600,500,250 "
+                         "--stylus-offset 0,0,-100 --temperature 20.4 --seed 3 -o '" +
+                         out.string() + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return out;
+  }();
+  return p;
+}
+
+std::string uncertainty_args(const std::string& extra) {
+  return "uncertainty --model '" + kModel + "' --points '" + measurement().string() +
+         "' --filter-upr 15 --progress never " + extra;
+}
+
+TEST(CliUncertainty, JsonReportHasEveryQuantityWithUnits) {
+  const CliRun r = run(uncertainty_args("--trials 300 --seed 5 --json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["schema"], "vcmm.uncertainty_result");
+  EXPECT_EQ(j["monte_carlo"]["trials"], 300);
+  EXPECT_EQ(j["monte_carlo"]["status"], "completed");
+  for (const char* m : {"diameter", "roundness"}) {
+    const auto& q = j["measurands"][m];
+    for (const char* k : {"estimate", "mean", "standard_uncertainty", "bias", "corrected",
+                          "corrected_standard_uncertainty", "correction_applied", "note"})
+      EXPECT_TRUE(q.contains(k)) << m << "." << k;
+    EXPECT_GT(q["standard_uncertainty"].get<double>(), 0.0);
+    EXPECT_LE(q["coverage_interval"]["low"].get<double>(), q["mean"].get<double>());
+    EXPECT_GE(q["coverage_interval"]["high"].get<double>(), q["mean"].get<double>());
+  }
+  EXPECT_EQ(j["measurands"]["diameter"]["unit"], "mm");
+  EXPECT_EQ(j["measurands"]["roundness"]["unit"], "um");
+  EXPECT_NEAR(j["measurands"]["diameter"]["estimate"].get<double>(), 171.0, 0.01);
+}
+
+TEST(CliUncertainty, SameSeedSameNumbersForOneAndTwoThreads) {
+  const fs::path s1 = scratch_dir() / "s1.csv", s2 = scratch_dir() / "s2.csv";
+  const CliRun a = run(uncertainty_args("--trials 200 --threads 1 --samples '" + s1.string() + "'"));
+  const CliRun b = run(uncertainty_args("--trials 200 --threads 2 --samples '" + s2.string() + "'"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const std::string x = slurp(s1);
+  EXPECT_EQ(x, slurp(s2));
+  EXPECT_EQ(std::count(x.begin(), x.end(), '\n'), 201);  // header + one line a trial
+  EXPECT_EQ(x.rfind("diameter_mm,roundness_um\n", 0), 0u);
+}
+
+TEST(CliUncertainty, BadOptionsAndInputs) {
+  EXPECT_EQ(run(uncertainty_args("--trials 100 --adaptive 0.01")).exit_code, 2);
+  EXPECT_EQ(run(uncertainty_args("--reference XY")).exit_code, 2);
+  const CliRun f = run(uncertainty_args("--trials 100 --filter-upr abc"));
+  EXPECT_EQ(f.exit_code, 2);
+  EXPECT_NE(f.err.find("--filter-upr"), std::string::npos) << f.err;
+  const fs::path out = scratch_dir() / "never.json";
+  const CliRun m = run("uncertainty --model /nonexistent/model.json --points '" +
+                       measurement().string() + "' --trials 100 -o '" + out.string() + "'");
+  EXPECT_EQ(m.exit_code, 3);
+  EXPECT_NE(m.err.find("/nonexistent/model.json"), std::string::npos) << m.err;
+  EXPECT_FALSE(fs::exists(out));
+  // A measurement too sparse for the filter: a clear error, exit 3.
+  const fs::path sparse = scratch_dir() / "ring12.csv";
+  ASSERT_EQ(run("simulate --model '" + kModel + "' --ring 171 --points 12 --mode touch "
+                "--location 600,500,250 -o '" + sparse.string() + "'").exit_code, 0);
+  const CliRun s = run("uncertainty --model '" + kModel + "' --points '" + sparse.string() +
+                       "' --trials 100 --filter-upr 50 --progress never");
+  EXPECT_EQ(s.exit_code, 3) << s.out;
+  EXPECT_NE(s.err.find("cut-off"), std::string::npos) << s.err;
+}
+
+TEST(CliDemo, SmallDemoRunsAndResumes) {
+  const fs::path out = scratch_dir() / "demo";
+  fs::remove_all(out);
+  const std::string args = "demo --model '" + kModel + "' -o '" + out.string() +
+                           "' --trials 100 --no-denoised --progress never";
+  const CliRun a = run(args);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_NE(a.out.find("66 measurements (66 computed, 0 resumed)"), std::string::npos) << a.out;
+  EXPECT_NE(a.out.find("roundness  corrected"), std::string::npos) << a.out;
+  const std::string table = slurp(out / "results.csv");
+  const CliRun b = run(args);
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_NE(b.out.find("(0 computed, 66 resumed)"), std::string::npos) << b.out;
+  EXPECT_EQ(slurp(out / "results.csv"), table);
+  // validate on the demo's own campaign file gives the same table (no truth columns).
+  const CliRun v = run("validate '" + (out / "world" / "campaign.json").string() + "' -o '" +
+                       (scratch_dir() / "validate").string() +
+                       "' --no-denoised --progress never");
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  EXPECT_TRUE(fs::is_regular_file(scratch_dir() / "validate" / "summary.csv"));
+  EXPECT_FALSE(fs::exists(scratch_dir() / "validate" / "treatments.csv"));
+}
+
+TEST(CliValidate, CampaignErrorsNameTheEntry) {
+  const fs::path c = scratch_dir() / "bad_campaign.json";
+  std::ofstream(c) << R"({"schema": "vcmm.campaign", "schema_version": 1, "model": ")" << kModel
+                   << R"(", "measurements": [{"id": "m1", "points": "missing.csv",
+                   "setup": {"location": "C", "orientation_deg": 0, "height": "middle",
+                   "mode": "scanning"}, "reference": {"roundness": {"value_um": 0.2, "u_um": 0.01}}}]})";
+  const CliRun r = run("validate '" + c.string() + "' -o '" + (scratch_dir() / "v2").string() + "'");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("m1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("missing.csv"), std::string::npos) << r.err;
+}
+
+}  // namespace

@@ -1,0 +1,476 @@
+"""Tests of python/vcmm_report.py on the synthetic output directories of
+python/make_report_fixture.py.
+
+Run:  /usr/bin/python3 -m unittest discover -s tests/python -v   (ctest: python_report)
+
+The script is run as a subprocess with the interpreter running these tests, as a user would
+run it, so exit codes, standard error and the files written are what is checked.  The tests
+are deterministic (fixed fixture seeds) and need matplotlib and numpy (Debian
+python3-matplotlib, python3-numpy); without them they are skipped with a message saying so.
+"""
+
+import base64
+import csv
+import html.parser
+import importlib.util
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PYTHON_DIR = os.path.normpath(os.path.join(HERE, "..", "..", "python"))
+SCRIPT = os.path.join(PYTHON_DIR, "vcmm_report.py")
+sys.path.insert(0, PYTHON_DIR)
+
+HAVE_PLOTTING = all(importlib.util.find_spec(name) is not None
+                    for name in ("matplotlib", "numpy"))
+
+if HAVE_PLOTTING:
+    import make_report_fixture
+
+SKIP_MESSAGE = ("matplotlib/numpy not importable by " + sys.executable
+                + ": install Debian python3-matplotlib python3-numpy "
+                "(scripts/install-deps.sh does) and run with /usr/bin/python3")
+EN_COLUMNS = ("En", "En_corrected", "En_denoised", "En_inflated")
+
+
+def run_report(outdir, *extra):
+    return subprocess.run([sys.executable, SCRIPT, outdir, *extra], capture_output=True,
+                          text=True, timeout=120)
+
+
+def png_size(path):
+    """(width, height) of a PNG after checking its signature, the IHDR chunk's CRC and that
+    the file ends with an IEND chunk; raises AssertionError otherwise."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise AssertionError(f"{path}: not a PNG signature")
+    length, kind = struct.unpack(">I4s", data[8:16])
+    if kind != b"IHDR" or length != 13:
+        raise AssertionError(f"{path}: first chunk is {kind!r}, not IHDR")
+    crc = struct.unpack(">I", data[16 + length:20 + length])[0]
+    if crc != zlib.crc32(data[12:16 + length]):
+        raise AssertionError(f"{path}: IHDR CRC mismatch")
+    if data[-12:-4] != b"\x00\x00\x00\x00IEND":
+        raise AssertionError(f"{path}: does not end with IEND (truncated?)")
+    return struct.unpack(">II", data[16:24])
+
+
+class Collector(html.parser.HTMLParser):
+    """Collects tags, attributes, table header texts and cell classes of a page."""
+
+    def __init__(self):
+        super().__init__()
+        self.tags = []
+        self.th_texts = []
+        self.td_classes = []
+        self._in_th = False
+
+    def handle_starttag(self, tag, attrs):
+        self.tags.append((tag, dict(attrs)))
+        if tag == "th":
+            self._in_th = True
+            self.th_texts.append("")
+        if tag == "td":
+            self.td_classes.append(dict(attrs).get("class", ""))
+
+    def handle_endtag(self, tag):
+        if tag == "th":
+            self._in_th = False
+
+    def handle_data(self, data):
+        if self._in_th:
+            self.th_texts[-1] += data
+
+
+def count_abs_en_above_one(results_csv):
+    count = 0
+    with open(results_csv, newline="") as f:
+        for row in csv.DictReader(f):
+            count += sum(1 for c in EN_COLUMNS if row[c] and abs(float(row[c])) > 1.0)
+    return count
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class DemoDirectory(unittest.TestCase):
+    """A `vcmm demo`-like directory: 7 locations (C + 6), 4 orientations, 2 modes, truth,
+    all four treatments, treatments.csv."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_demo_")
+        cls.outdir = os.path.join(cls.tmp, "demo")
+        cls.ids = make_report_fixture.write_fixture(cls.outdir, seed=11, trials=400)
+        cls.proc = run_report(cls.outdir, "--title", "Demo <script>alert(1)</script> & co")
+        cls.figures = os.path.join(cls.outdir, "figures")
+        report = os.path.join(cls.outdir, "report.html")
+        cls.html = ""
+        if os.path.exists(report):
+            with open(report, encoding="utf-8") as f:
+                cls.html = f.read()
+        cls.page = Collector()
+        cls.page.feed(cls.html)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_exit_code_and_output_list(self):
+        self.assertEqual(self.proc.returncode, 0, self.proc.stderr)
+        self.assertNotIn("Traceback", self.proc.stderr)
+        self.assertIn(os.path.join(self.outdir, "report.html"), self.proc.stdout)
+
+    def test_every_expected_png_is_valid_and_sensibly_sized(self):
+        expected = ["en_per_measurement.png", "residuals_locations.png",
+                    "residuals_orientations.png", "treatments.png", "factors.png",
+                    "histogram_C-O000-mid-scan.png", "histogram_C-O000-mid-touch.png"]
+        self.assertEqual(sorted(os.listdir(self.figures)), sorted(expected))
+        for name in expected:
+            with self.subTest(name=name):
+                width, height = png_size(os.path.join(self.figures, name))
+                # ~10-24 inch wide figures at 110 dpi, cropped to their content.
+                self.assertTrue(700 <= width <= 3000, (name, width))
+                self.assertTrue(350 <= height <= 3000, (name, height))
+                # A drawn figure with text and data is tens of kB; a blank one is a few kB.
+                self.assertGreater(os.path.getsize(os.path.join(self.figures, name)), 20000)
+
+    def test_histograms_are_one_scanning_and_one_touch_at_the_centre(self):
+        names = [n for n in os.listdir(self.figures) if n.startswith("histogram_")]
+        ids = sorted(n[len("histogram_"):-len(".png")] for n in names)
+        self.assertEqual(ids, ["C-O000-mid-scan", "C-O000-mid-touch"])
+        self.assertTrue(all(i in self.ids for i in ids))
+
+    def test_no_temporary_files_left(self):
+        for directory in (self.outdir, self.figures):
+            leftovers = [n for n in os.listdir(directory) if n.endswith(".tmp")]
+            self.assertEqual(leftovers, [], directory)
+
+    def test_html_embeds_every_figure_as_a_data_uri_equal_to_the_png(self):
+        images = [a["src"] for tag, a in self.page.tags if tag == "img"]
+        pngs = sorted(os.listdir(self.figures))
+        self.assertEqual(len(images), len(pngs))
+        embedded = set()
+        for src in images:
+            prefix = "data:image/png;base64,"
+            self.assertTrue(src.startswith(prefix), src[:60])
+            embedded.add(base64.b64decode(src[len(prefix):], validate=True))
+        on_disk = set()
+        for name in pngs:
+            with open(os.path.join(self.figures, name), "rb") as f:
+                on_disk.add(f.read())
+        self.assertEqual(embedded, on_disk)
+
+    def test_html_is_self_contained_with_relative_links_that_exist(self):
+        self.assertNotIn("http://", self.html)
+        self.assertNotIn("https://", self.html)
+        self.assertNotIn("url(", self.html)
+        for tag, attrs in self.page.tags:
+            self.assertNotIn(tag, ("script", "link", "iframe", "object", "embed"))
+            if tag == "a":
+                target = attrs["href"]
+                if target.startswith("#"):
+                    continue
+                self.assertFalse(target.startswith(("/", "file:", "//")), target)
+                self.assertTrue(os.path.isfile(os.path.join(self.outdir, target)), target)
+        hrefs = {a.get("href") for tag, a in self.page.tags if tag == "a"}
+        for name in ("results.csv", "summary.csv", "results.json", "treatments.csv",
+                     "figures/en_per_measurement.png", "figures/factors.png"):
+            self.assertIn(name, hrefs)
+
+    def test_html_contains_the_three_tables(self):
+        headers = set(self.page.th_texts)
+        self.assertIn("share |E_n| ≤ 1 (%)", headers)          # summary
+        self.assertIn("mean error", headers)                     # treatments
+        self.assertIn("En_corrected", headers)                   # per-measurement results
+        self.assertIn("true_value", headers)
+        ids_in_cells = sum(self.html.count(f"<td>{i}</td>") for i in self.ids)
+        self.assertEqual(ids_in_cells, 2 * len(self.ids))        # diameter + roundness rows
+
+    def test_abs_en_above_one_is_highlighted_exactly(self):
+        expected = count_abs_en_above_one(os.path.join(self.outdir, "results.csv"))
+        self.assertGreater(expected, 0, "the fixture should contain some |E_n| > 1")
+        self.assertEqual(sum(1 for c in self.page.td_classes if "out" in c.split()), expected)
+
+    def test_text_is_escaped(self):
+        self.assertNotIn("<script>", self.html)
+        self.assertIn("Demo &lt;script&gt;alert(1)&lt;/script&gt; &amp; co", self.html)
+
+    def test_provenance_shows_run_info_keys(self):
+        for key in ("seed", "trials", "coverage_probability", "factors.locations"):
+            self.assertIn(f"<td>{key}</td>", self.html)
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class ValidateDirectoryWithoutCentre(unittest.TestCase):
+    """A `vcmm validate`-like directory: no truth, no treatment (b), no treatments.csv,
+    refused corrections left empty, and no location called C/centre."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_validate_")
+        cls.outdir = os.path.join(cls.tmp, "validate")
+        make_report_fixture.write_fixture(cls.outdir, seed=5, trials=200,
+                                          locations=("P1", "P2", "P3"), validate=True)
+        with open(os.path.join(cls.outdir, "run_info.json"), "w", encoding="utf-8") as f:
+            f.write('{"command": "vcmm validate <campaign> & \\"x\\"", '
+                    '"evaluation": {"k": 2, "coverage_probability": 0.95}}\n')
+        cls.proc = run_report(cls.outdir)
+        with open(os.path.join(cls.outdir, "report.html"), encoding="utf-8") as f:
+            cls.html = f.read()
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_succeeds_without_treatments_figure(self):
+        self.assertEqual(self.proc.returncode, 0, self.proc.stderr)
+        figures = os.listdir(os.path.join(self.outdir, "figures"))
+        self.assertNotIn("treatments.png", figures)
+        for name in ("en_per_measurement.png", "residuals_locations.png",
+                     "residuals_orientations.png", "factors.png"):
+            self.assertIn(name, figures)
+        self.assertIn("No treatments.csv", self.html)
+        self.assertIn("treatments.png not drawn", self.proc.stderr)
+
+    def test_says_that_no_centre_was_found(self):
+        self.assertIn("No location is labelled C/centre/center", self.html)
+        self.assertIn("location &#x27;P1&#x27; stands in for the centre", self.html)
+
+    def test_empty_columns_are_left_out_and_named(self):
+        self.assertIn("left out: corrected_denoised, En_denoised, true_value", self.html)
+
+    def test_nested_run_info_is_flattened_and_escaped(self):
+        self.assertIn("<td>evaluation.k</td>", self.html)
+        self.assertIn("vcmm validate &lt;campaign&gt; &amp; &quot;x&quot;", self.html)
+        self.assertIn("k = 2 (run_info.json evaluation.k)", self.html)
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class BadInput(unittest.TestCase):
+    """Every malformed or missing input: exit code 3, one message naming the file (and the
+    line), no traceback, no report written."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_bad_")
+        cls.base = os.path.join(cls.tmp, "base")
+        make_report_fixture.write_fixture(cls.base, seed=3, trials=20, locations=("C", "L1"),
+                                          orientations_deg=(0, 90))
+        cls.count = 0
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def copy(self):
+        type(self).count += 1
+        outdir = os.path.join(self.tmp, f"case{self.count}")
+        shutil.copytree(self.base, outdir)
+        return outdir
+
+    def edit_line(self, path, line_number, edit):
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().split("\n")
+        lines[line_number - 1] = edit(lines[line_number - 1])
+        with open(path, "w", encoding="utf-8") as f:
+            f.write("\n".join(lines))
+
+    def set_field(self, path, line_number, column, value):
+        with open(path, encoding="utf-8") as f:
+            header = f.readline().strip().split(",")
+        index = header.index(column)
+
+        def edit(line):
+            fields = line.split(",")
+            fields[index] = value
+            return ",".join(fields)
+        self.edit_line(path, line_number, edit)
+
+    def assert_rejected(self, outdir, *fragments):
+        proc = run_report(outdir)
+        self.assertEqual(proc.returncode, 3, proc.stderr)
+        self.assertNotIn("Traceback", proc.stderr)
+        self.assertTrue(proc.stderr.startswith("vcmm_report.py: error: "), proc.stderr)
+        self.assertEqual(proc.stderr.count("\n"), 1, proc.stderr)   # one line
+        for fragment in fragments:
+            self.assertIn(fragment, proc.stderr)
+        if os.path.isdir(outdir):
+            self.assertFalse(os.path.exists(os.path.join(outdir, "report.html")))
+            self.assertFalse(os.path.exists(os.path.join(outdir, "figures")))
+        return proc.stderr
+
+    def test_missing_directory(self):
+        self.assert_rejected(os.path.join(self.tmp, "no_such_dir"), "no_such_dir",
+                             "not a directory")
+
+    def test_missing_results_csv(self):
+        outdir = self.copy()
+        os.remove(os.path.join(outdir, "results.csv"))
+        self.assert_rejected(outdir, "results.csv", "file not found")
+
+    def test_missing_summary_csv(self):
+        outdir = self.copy()
+        os.remove(os.path.join(outdir, "summary.csv"))
+        self.assert_rejected(outdir, "summary.csv", "file not found")
+
+    def test_results_header_lacks_a_column(self):
+        outdir = self.copy()
+        path = os.path.join(outdir, "results.csv")
+        self.edit_line(path, 1, lambda line: line.replace(",En_corrected,", ",En_corr,"))
+        self.assert_rejected(outdir, "results.csv: line 1", "En_corrected")
+
+    def test_results_value_not_a_number(self):
+        outdir = self.copy()
+        path = os.path.join(outdir, "results.csv")
+        self.set_field(path, 5, "estimate", "12x5")
+        self.assert_rejected(outdir, "results.csv: line 5", "'estimate'", "'12x5'")
+
+    def test_results_nan_rejected(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 3, "En", "nan")
+        self.assert_rejected(outdir, "results.csv: line 3", "'En'", "not finite")
+
+    def test_results_required_number_empty(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 4, "u", "")
+        self.assert_rejected(outdir, "results.csv: line 4", "'u' is empty")
+
+    def test_results_wrong_field_count(self):
+        outdir = self.copy()
+        self.edit_line(os.path.join(outdir, "results.csv"), 6, lambda line: line + ",1")
+        self.assert_rejected(outdir, "results.csv: line 6", "27 fields", "header has 26")
+
+    def test_results_unknown_measurand(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 2, "measurand", "ront")
+        self.assert_rejected(outdir, "results.csv: line 2", "measurand", "'ront'")
+
+    def test_results_wrong_unit(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 2, "unit", "um")  # a diameter
+        self.assert_rejected(outdir, "results.csv: line 2", "unit", "'um'")
+
+    def test_results_duplicate_measurand_row(self):
+        outdir = self.copy()
+        path = os.path.join(outdir, "results.csv")
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().splitlines()
+        lines.append(lines[1])
+        with open(path, "w", encoding="utf-8") as f:
+            f.write("\n".join(lines) + "\n")
+        self.assert_rejected(outdir, f"results.csv: line {len(lines)}", "second 'diameter'")
+
+    def test_summary_share_in_percent_rejected(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "summary.csv"), 2, "share_abs_En_le_1", "95.4")
+        self.assert_rejected(outdir, "summary.csv: line 2", "fraction in [0, 1]", "'95.4'")
+
+    def test_treatments_unknown_treatment(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "treatments.csv"), 3, "treatment", "magic")
+        self.assert_rejected(outdir, "treatments.csv: line 3", "'magic'")
+
+    def test_run_info_invalid_json(self):
+        outdir = self.copy()
+        with open(os.path.join(outdir, "run_info.json"), "w", encoding="utf-8") as f:
+            f.write('{\n  "seed": 1,\n  "trials": ,\n}\n')
+        self.assert_rejected(outdir, "run_info.json: line 3", "invalid JSON")
+
+    def test_residuals_not_a_number(self):
+        outdir = self.copy()
+        path = os.path.join(outdir, "residuals", "C-O000-mid-scan.csv")
+        self.set_field(path, 7, "deviation_um", "abc")
+        self.assert_rejected(outdir, os.path.join("residuals", "C-O000-mid-scan.csv"),
+                             "line 7", "'abc'")
+
+    def test_residuals_angles_out_of_order(self):
+        outdir = self.copy()
+        path = os.path.join(outdir, "residuals", "C-O000-mid-scan.csv")
+        self.set_field(path, 10, "angle_deg", "1.0")
+        self.assert_rejected(outdir, "C-O000-mid-scan.csv: line 10", "increasing order")
+
+    def test_samples_infinite(self):
+        outdir = self.copy()
+        path = os.path.join(outdir, "samples", "C-O000-mid-touch.csv")
+        self.set_field(path, 4, "roundness_um", "inf")
+        self.assert_rejected(outdir, os.path.join("samples", "C-O000-mid-touch.csv"),
+                             "line 4", "not finite")
+
+    def test_command_line_error_exits_2(self):
+        proc = subprocess.run([sys.executable, SCRIPT], capture_output=True, text=True,
+                              timeout=60)
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn("OUTDIR", proc.stderr)
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class SelectionRules(unittest.TestCase):
+    """Which measurements the residual and histogram figures show (module functions called
+    directly: no drawing)."""
+
+    @classmethod
+    def setUpClass(cls):
+        import vcmm_report
+        cls.report = vcmm_report
+        cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_select_")
+        cls.outdir = os.path.join(cls.tmp, "run")
+        make_report_fixture.write_fixture(cls.outdir, seed=8, trials=20,
+                                          locations=("L1", "Centre", "L2"),
+                                          heights=("top", "middle"))
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def load(self):
+        return self.report.load_run(self.outdir)
+
+    def test_centre_label_is_found_and_ordered_first(self):
+        run = self.load()
+        self.assertTrue(run.centre_found)
+        self.assertEqual(run.locations, ["Centre", "L1", "L2"])
+        self.assertEqual(run.measurements[0].id, "Centre-O000-top-scan")
+
+    def test_location_pair_prefers_centre_scanning_middle_smallest_angle(self):
+        run = self.load()
+        ids = {m.id for m in run.measurements}
+        first, second, note = self.report.choose_location_pair(run, ids)
+        self.assertEqual((first.id, second.id), ("Centre-O000-mid-scan", "L1-O000-mid-scan"))
+        self.assertNotIn("stands in", note)
+
+    def test_location_pair_falls_back_when_the_centre_has_no_profiles(self):
+        run = self.load()
+        ids = {m.id for m in run.measurements if m.location != "Centre"}
+        first, second, note = self.report.choose_location_pair(run, ids)
+        self.assertEqual((first.id, second.id), ("L1-O000-mid-scan", "L2-O000-mid-scan"))
+        self.assertIn("The centre 'Centre' has no residual profile", note)
+
+    def test_location_pair_needs_matching_profiles(self):
+        run = self.load()
+        ids = {"Centre-O000-mid-scan", "L1-O090-mid-scan"}
+        first, second, note = self.report.choose_location_pair(run, ids)
+        self.assertIsNone(first)
+        self.assertIn("no two locations", note)
+
+    def test_orientation_set_at_the_centre(self):
+        run = self.load()
+        chosen, note = self.report.choose_orientation_set(run, {m.id for m in run.measurements})
+        self.assertEqual([m.id for m in chosen],
+                         [f"Centre-O{o:03d}-mid-scan" for o in (0, 90, 180, 270)])
+        self.assertIn("at the centre", note)
+
+    def test_histograms_one_per_mode_at_the_centre(self):
+        run = self.load()
+        chosen = self.report.choose_histograms(run, {m.id for m in run.measurements})
+        self.assertEqual([m.id for m in chosen],
+                         ["Centre-O000-mid-scan", "Centre-O000-mid-touch"])
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,212 @@
+// End-to-end tests of the campaign runner on a small synthetic world (the demo's plan with
+// few points and few trials, so it runs in about a second): the tables, resume after an
+// interruption giving the same final table, setup/metadata mismatches named by entry, and
+// the treatments against the known truth.
+#include "vcmm/validation/campaign_run.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include "vcmm/errormodel/digital_model.h"
+#include "vcmm/validation/demo_world.h"
+
+namespace vcmm::validation {
+namespace {
+
+namespace fs = std::filesystem;
+namespace em = vcmm::errormodel;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+class CampaignRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("vcmm_campaign_run_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+             "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    const std::string model_path = std::string(VCMM_SOURCE_DIR) + "/examples/cmm_model.json";
+    model_text_ = slurp(model_path);
+    const em::DigitalModel model = em::parse_digital_model(model_text_, model_path);
+    DemoWorldOptions wo;
+    wo.scanning_points = 360;
+    wo.touch_trigger_points = 120;
+    wo.roundness_meter_points = 720;
+    world_ = std::make_unique<DemoWorld>(make_demo_world(model, wo));
+    settings_.trials = 100;
+    settings_.filter_cutoff_upr = 15.0;
+    truth_ = write_demo_campaign(*world_, model_text_, settings_, root_ / "world");
+    campaign_ = read_campaign_file(root_ / "world" / "campaign.json");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  fs::path root_;
+  std::string model_text_;
+  std::unique_ptr<DemoWorld> world_;
+  EvaluationSettings settings_;
+  std::map<std::string, RingMeasurands> truth_;
+  Campaign campaign_;
+};
+
+TEST_F(CampaignRun, TheDemoPlanHas66MeasurementsOverAllFactors) {
+  ASSERT_EQ(campaign_.measurements.size(), 66u);
+  std::set<std::string> locations, heights, modes, orientations;
+  for (const auto& m : campaign_.measurements) {
+    locations.insert(m.setup.location);
+    heights.insert(std::string(to_string(m.setup.height)));
+    modes.insert(std::string(em::to_string(m.setup.mode)));
+    orientations.insert(std::to_string(m.setup.orientation_deg));
+  }
+  EXPECT_EQ(locations.size(), 7u);
+  EXPECT_EQ(heights.size(), 3u);
+  EXPECT_EQ(modes.size(), 2u);
+  EXPECT_EQ(orientations.size(), 4u);
+}
+
+TEST_F(CampaignRun, WritesEveryTableAndScoresEveryMeasurement) {
+  CampaignRunOptions o;
+  o.truth = truth_;
+  const CampaignOutcome out = run_campaign(campaign_, root_ / "out", o);
+  ASSERT_FALSE(out.cancelled);
+  ASSERT_EQ(out.measurements.size(), 66u);
+  for (const char* f : {"results.csv", "results.json", "summary.csv", "summary.json",
+                        "treatments.csv", "run_info.json"})
+    EXPECT_TRUE(fs::is_regular_file(root_ / "out" / f)) << f;
+  for (const auto& m : out.measurements) {
+    EXPECT_TRUE(fs::is_regular_file(root_ / "out" / "samples" / (m.id + ".csv")));
+    EXPECT_TRUE(fs::is_regular_file(root_ / "out" / "residuals" / (m.id + ".csv")));
+    for (const MeasurandOutcome* o2 : {&m.diameter, &m.roundness}) {
+      EXPECT_TRUE(o2->has_reference);
+      EXPECT_TRUE(std::isfinite(o2->en)) << m.id;
+      EXPECT_TRUE(std::isfinite(o2->en_denoised)) << m.id;
+      EXPECT_GT(o2->u_mm, 0.0);
+      // E_n = (ref − y) / (2 √(u_ref² + u²)) by hand.
+      EXPECT_NEAR(o2->en,
+                  (o2->reference_mm - o2->estimate_mm) /
+                      (2.0 * std::hypot(o2->u_reference_mm, o2->u_mm)),
+                  1e-12);
+      EXPECT_TRUE(std::isfinite(o2->true_mm));
+    }
+    // The reference roundness sees the true form (filtered) within the meter's noise.
+    EXPECT_NEAR(m.roundness.reference_mm, m.roundness.true_mm, 0.03e-3) << m.id;
+  }
+  // One line per measurement and measurand, plus the header.
+  const std::string csv = slurp(root_ / "out" / "results.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 66);
+  // "all" rows exist for all four treatments of both measurands.
+  std::size_t all_rows = 0;
+  for (const auto& r : out.summary) all_rows += r.factor == "all" ? 1 : 0;
+  EXPECT_EQ(all_rows, 8u);
+  EXPECT_EQ(out.treatments.size(), 8u);
+}
+
+TEST_F(CampaignRun, AnInterruptedRunResumesToTheSameTable) {
+  CampaignRunOptions o;
+  o.truth = truth_;
+  o.threads = 2;
+  const auto full = run_campaign(campaign_, root_ / "full", o);
+  ASSERT_FALSE(full.cancelled);
+
+  std::atomic<bool> stop{false};
+  CampaignRunOptions interrupted = o;
+  interrupted.threads = 1;  // a different thread count must not change any number either
+  interrupted.cancel = &stop;
+  interrupted.on_measurement = [&](std::size_t i, std::size_t, const std::string&, bool) {
+    if (i == 20) stop = true;  // abandons measurement 20 in its Monte Carlo
+  };
+  const auto first = run_campaign(campaign_, root_ / "resumed", interrupted);
+  EXPECT_TRUE(first.cancelled);
+  EXPECT_EQ(first.measurements.size(), 20u);
+  EXPECT_FALSE(fs::exists(root_ / "resumed" / "results.csv"));
+
+  const auto second = run_campaign(campaign_, root_ / "resumed", o);
+  ASSERT_FALSE(second.cancelled);
+  EXPECT_EQ(second.resumed, 20u);
+  EXPECT_EQ(second.computed, 46u);
+  for (const char* f : {"results.csv", "summary.csv", "treatments.csv", "results.json"})
+    EXPECT_EQ(slurp(root_ / "full" / f), slurp(root_ / "resumed" / f)) << f;
+}
+
+TEST_F(CampaignRun, AChangedInputIsRecomputedNotResumed) {
+  CampaignRunOptions o;
+  Campaign small = campaign_;
+  small.measurements.resize(2);
+  run_campaign(small, root_ / "out", o);
+  // Same campaign, other trial count: fingerprints differ, so nothing is reused.
+  small.evaluation.trials = 120;
+  const auto again = run_campaign(small, root_ / "out", o);
+  EXPECT_EQ(again.resumed, 0u);
+  EXPECT_EQ(again.computed, 2u);
+  EXPECT_EQ(again.measurements[0].trials, 120u);
+}
+
+TEST_F(CampaignRun, ASetupContradictingThePointsFileNamesTheEntry) {
+  Campaign bad = campaign_;
+  bad.measurements.resize(3);
+  bad.measurements[2].setup.orientation_deg += 90.0;
+  try {
+    run_campaign(bad, root_ / "out", {});
+    FAIL() << "expected CampaignError";
+  } catch (const CampaignError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("measurements[2]"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(bad.measurements[2].id), std::string::npos) << msg;
+    EXPECT_NE(msg.find("orientation_deg"), std::string::npos) << msg;
+  }
+  bad = campaign_;
+  bad.measurements.resize(1);
+  bad.measurements[0].setup.mode = em::ProbingMode::touch_trigger;
+  bad.measurements[0].points_path = campaign_.measurements[0].points_path;
+  if (campaign_.measurements[0].setup.mode == em::ProbingMode::scanning) {
+    EXPECT_THROW(run_campaign(bad, root_ / "out", {}), CampaignError);
+  }
+}
+
+TEST(CampaignSummary, StatisticsByHand) {
+  std::vector<MeasurementOutcome> v(3);
+  const double en[3] = {0.5, -1.5, 1.0};
+  for (int i = 0; i < 3; ++i) {
+    v[i].id = "m" + std::to_string(i);
+    v[i].location = i < 2 ? "A" : "B";
+    for (MeasurandOutcome* o : {&v[i].diameter, &v[i].roundness}) {
+      o->has_reference = true;
+      o->en = en[i];
+      o->en_corrected = 0.0;
+      o->en_denoised = std::nan("");
+      o->en_inflated = 0.0;
+    }
+  }
+  const auto rows = summarize_campaign(v);
+  const SummaryRow* all = nullptr;
+  const SummaryRow* loc_a = nullptr;
+  for (const auto& r : rows) {
+    if (r.factor == "all" && r.measurand == "roundness" && r.treatment == "uncorrected") all = &r;
+    if (r.factor == "location" && r.level == "A" && r.measurand == "diameter" &&
+        r.treatment == "uncorrected")
+      loc_a = &r;
+    EXPECT_NE(r.treatment, "denoised");  // no finite E_n: no row
+  }
+  ASSERT_TRUE(all && loc_a);
+  EXPECT_EQ(all->n, 3u);
+  EXPECT_DOUBLE_EQ(all->share_within_1, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(all->mean_en, 0.0);
+  EXPECT_DOUBLE_EQ(all->rms_en, std::sqrt((0.25 + 2.25 + 1.0) / 3.0));
+  EXPECT_EQ(loc_a->n, 2u);
+  EXPECT_DOUBLE_EQ(loc_a->mean_en, -0.5);
+}
+
+}  // namespace
+}  // namespace vcmm::validation

@@ -1,0 +1,138 @@
+// vcmm/validation/campaign_run.h — running a validation campaign: the uncertainty evaluation
+// of every measurement, its comparison with the reference values (E_n, zeta) under the bias
+// treatments, and the tables (docs/validation.md, "Running a campaign"; output files:
+// docs/formats.md, "Validation output directory").
+//
+// Bias treatments compared per measurement and measurand (docs/validation.md):
+//   uncorrected  y with u                               E_n = (x_ref − y) / (k·√(u_ref² + u²))
+//   corrected    (a) the seed study: bias b from the virtual experiment run on the measured
+//                (corrected-for-systematics) points; y − b with u_c (uncertainty::correct_bias)
+//   denoised     (b) bias from the virtual experiment run on the denoised virtual truth (the
+//                measured profile after the Gaussian filter, denoised_ring): y − b_dn
+//   inflated     (c) no correction; U = k·u + |b|: E_n = (x_ref − y) / √((k u_ref)² + (k u + |b|)²)
+// A correction that would make the roundness negative is refused (the uncorrected value is
+// reported with u = √(u² + b²)).
+//
+// Resumable: each finished measurement is written as OUT/measurements/<id>.json (atomically,
+// after its samples and residuals) with a fingerprint of everything its numbers depend on
+// (model, points and reference files' bytes, the entry, the evaluation settings, the
+// treatments, the true values); a rerun loads every measurement whose fingerprint matches
+// instead of recomputing it, so an interrupted and restarted run gives the same tables, bit
+// for bit, as an uninterrupted one.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vcmm/errormodel/measurement.h"
+#include "vcmm/validation/campaign.h"
+#include "vcmm/validation/ring_experiment.h"
+
+namespace vcmm::validation {
+
+/// One measurand of one measurement: values in mm (roundness too), scores dimensionless;
+/// NaN where there is nothing (no reference → no scores; treatment (b) not run).
+struct MeasurandOutcome {
+  bool has_reference = false;
+  double reference_mm = 0.0, u_reference_mm = 0.0;
+  std::string reference_method;
+  double estimate_mm = 0.0;       ///< y, from the (systematics-corrected) data
+  double u_mm = 0.0;              ///< Monte Carlo standard uncertainty
+  double mc_mean_mm = 0.0;
+  double bias_mm = 0.0, bias_standard_error_mm = 0.0;
+  double interval_low_mm = 0.0, interval_high_mm = 0.0;  ///< MC probabilistically symmetric
+  double corrected_mm = 0.0, u_corrected_mm = 0.0;       ///< treatment (a)
+  bool correction_applied = false;
+  std::string note;
+  double corrected_denoised_mm = 0.0, u_denoised_mm = 0.0;  ///< treatment (b), NaN if not run
+  bool denoised_applied = false;
+  double en = 0.0, en_corrected = 0.0, en_denoised = 0.0, en_inflated = 0.0;
+  double zeta = 0.0, zeta_corrected = 0.0;
+  double true_mm = 0.0;  ///< the true value (demo), NaN otherwise
+};
+
+/// One measurement's outcome.
+struct MeasurementOutcome {
+  std::string id;
+  std::string location;
+  double orientation_deg = 0.0;
+  Height height = Height::middle;
+  errormodel::ProbingMode mode = errormodel::ProbingMode::scanning;
+  std::size_t points = 0;
+  std::uint64_t seed = 0;
+  std::uint64_t trials = 0;
+  MeasurandOutcome diameter, roundness;
+  std::string fingerprint;
+  double wall_seconds = 0.0;  ///< time spent computing it (0 when loaded)
+  bool resumed = false;       ///< loaded from a previous run's file
+};
+
+/// One line of the summary: E_n statistics of one treatment over the measurements that share
+/// a factor level.
+struct SummaryRow {
+  std::string factor;     ///< all, location, orientation_deg, height, mode
+  std::string level;      ///< "all" or the level
+  std::string measurand;  ///< diameter, roundness
+  std::string treatment;  ///< uncorrected, corrected, denoised, inflated
+  std::size_t n = 0;
+  double share_within_1 = 0.0;  ///< share of |E_n| ≤ 1
+  double mean_en = 0.0, rms_en = 0.0;
+};
+
+/// With known true values (demo): per measurand and treatment, E_n statistics and the error
+/// of the reported value against the truth.
+struct TreatmentRow {
+  std::string measurand, treatment;
+  std::size_t n = 0;
+  double mean_en = 0.0, rms_en = 0.0, share_within_1 = 0.0;
+  double mean_error_mm = 0.0, rms_error_mm = 0.0;
+};
+
+struct CampaignRunOptions {
+  unsigned threads = 0;  ///< Monte Carlo threads (0: all cores)
+  /// Run treatment (b) (a second Monte Carlo per measurement, on the denoised truth; needs a
+  /// filter cut-off in the campaign).
+  bool denoised_treatment = true;
+  /// Known true values by measurement id (demo); missing ids have none.
+  std::map<std::string, RingMeasurands> truth;
+  /// Called before each measurement (index, count, id, resumed?) and during its Monte Carlo.
+  std::function<void(std::size_t index, std::size_t count, const std::string& id, bool resumed)>
+      on_measurement;
+  std::function<void(std::uint64_t done, std::uint64_t planned)> progress;
+  const std::atomic<bool>* cancel = nullptr;
+  /// Extra provenance written into run_info.json (e.g. the command line).
+  std::map<std::string, std::string> provenance;
+};
+
+struct CampaignOutcome {
+  std::vector<MeasurementOutcome> measurements;  ///< in campaign order (finished ones)
+  std::vector<SummaryRow> summary;
+  std::vector<TreatmentRow> treatments;          ///< empty without truth
+  std::size_t computed = 0, resumed = 0;
+  bool cancelled = false;  ///< stopped early: tables not written; rerun to resume
+  double wall_seconds = 0.0;
+};
+
+/// Runs the campaign into `output_dir` (created if needed): per measurement the files
+/// samples/<id>.csv, residuals/<id>.csv and measurements/<id>.json; then results.csv,
+/// results.json, summary.csv, summary.json, treatments.csv (with truth) and run_info.json,
+/// all written atomically. Throws CampaignError (naming the entry) when a points file's
+/// metadata contradicts its setup or a reference cannot be evaluated, geometry::InvalidInput /
+/// errormodel::InvalidParameter for bad model or points files, std::runtime_error when a file
+/// cannot be written. When options.cancel becomes true the current measurement is abandoned,
+/// the finished ones stay on disk, and the outcome says cancelled.
+CampaignOutcome run_campaign(const Campaign& campaign, const std::filesystem::path& output_dir,
+                             const CampaignRunOptions& options);
+
+/// The summary rows of a set of outcomes (factor "all" first, then location, orientation_deg,
+/// height, mode; levels in order of first appearance; treatments uncorrected, corrected,
+/// denoised, inflated; rows with no finite E_n are left out).
+std::vector<SummaryRow> summarize_campaign(const std::vector<MeasurementOutcome>& outcomes);
+
+}  // namespace vcmm::validation

@@ -1,0 +1,663 @@
+// validation/src/campaign_run.cpp — the campaign runner (see the header for the treatments and
+// the resume rule; docs/validation.md for the method).
+#include "vcmm/validation/campaign_run.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+#include "internal/number_text.h"
+#include "vcmm/errormodel/atomic_file.h"
+#include "vcmm/errormodel/digital_model.h"
+#include "vcmm/validation/comparison.h"
+#include "vcmm/validation/ring_uncertainty_report.h"
+
+namespace vcmm::validation {
+namespace {
+
+namespace em = vcmm::errormodel;
+namespace fs = std::filesystem;
+using nlohmann::json;
+using internal::shortest;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kUmPerMm = 1000.0;
+/// Setup values must equal the points file's metadata to this (both are written as shortest
+/// round-trip decimals, so an honest match is exact; the slack only forgives hand-written
+/// rounding far below any physical meaning).
+constexpr double kSetupToleranceMm = 1e-9;
+constexpr double kSetupToleranceDeg = 1e-9;
+constexpr double kSetupToleranceC = 1e-9;
+/// Version of the per-measurement file; part of the fingerprint (a format change recomputes).
+constexpr const char* kOutcomeFormat = "vcmm.campaign_measurement.v1";
+
+std::string read_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw std::runtime_error("run_campaign: cannot read '" + p.string() + "'");
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+/// FNV-1a 64 over a sequence of byte strings (with their lengths, so boundaries count).
+class Fingerprint {
+ public:
+  void add(const std::string& bytes) {
+    add_raw(std::to_string(bytes.size()) + ":");
+    add_raw(bytes);
+  }
+  std::string hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
+    return buf;
+  }
+
+ private:
+  void add_raw(const std::string& s) {
+    for (unsigned char c : s) {
+      h_ ^= c;
+      h_ *= 0x100000001b3ULL;
+    }
+  }
+  std::uint64_t h_ = 0xcbf29ce484222325ULL;
+};
+
+[[noreturn]] void setup_error(const Campaign& c, std::size_t i, const std::string& path,
+                              const std::string& message) {
+  const std::string index = "measurements[" + std::to_string(i) + "]";
+  throw CampaignError(c.source, i, c.measurements[i].id, index + "." + path,
+                      c.source + ": " + index + " (\"" + c.measurements[i].id + "\")." + path +
+                          ": " + message);
+}
+
+/// The points file's metadata must agree with the campaign's setup where both give it.
+void check_setup(const Campaign& c, std::size_t i, const em::Measurement& m) {
+  const Setup& s = c.measurements[i].setup;
+  const std::string file = c.measurements[i].points_path.string();
+  if (s.mode != m.mode)
+    setup_error(c, i, "setup.mode",
+                "mode \"" + std::string(em::to_string(s.mode)) + "\" but the points file " + file +
+                    " says \"" + std::string(em::to_string(m.mode)) + "\"");
+  if (s.location_mm) {
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs((*s.location_mm)[static_cast<std::size_t>(k)] - m.placement.location_mm[k]) >
+          kSetupToleranceMm)
+        setup_error(c, i, "setup.location_mm",
+                    "component " + std::to_string(k) + " is " +
+                        shortest((*s.location_mm)[static_cast<std::size_t>(k)]) +
+                        " mm but the points file " + file + " says " +
+                        shortest(m.placement.location_mm[k]) + " mm");
+    }
+  }
+  const double file_deg = m.placement.orientation_rad * 180.0 / std::numbers::pi;
+  if (std::abs(std::remainder(s.orientation_deg - file_deg, 360.0)) > kSetupToleranceDeg)
+    setup_error(c, i, "setup.orientation_deg",
+                shortest(s.orientation_deg) + " deg but the points file " + file + " says " +
+                    shortest(file_deg) + " deg");
+  if (s.temperature_c && std::abs(*s.temperature_c - m.temperature_c) > kSetupToleranceC)
+    setup_error(c, i, "setup.temperature_c",
+                shortest(*s.temperature_c) + " C but the points file " + file + " says " +
+                    shortest(m.temperature_c) + " C");
+}
+
+/// The Monte Carlo summary of run (b) re-expressed about the estimate y: its bias b_dn
+/// = ȳ_dn − f(denoised) applied to y (so correct_bias(y, ·) gives y − b_dn).
+uncertainty::MeasurandSummary shifted(const uncertainty::MeasurandSummary& s, double by) {
+  uncertainty::MeasurandSummary out = s;
+  out.mean += by;
+  out.probabilistically_symmetric.low += by;
+  out.probabilistically_symmetric.high += by;
+  out.shortest.low += by;
+  out.shortest.high += by;
+  return out;
+}
+
+void score(MeasurandOutcome& o, double k) {
+  if (!o.has_reference) {
+    o.en = o.en_corrected = o.en_denoised = o.en_inflated = o.zeta = o.zeta_corrected = kNaN;
+    return;
+  }
+  const double xr = o.reference_mm, ur = o.u_reference_mm;
+  o.en = en_score(xr, ur, o.estimate_mm, o.u_mm, k);
+  o.zeta = zeta_score(xr, ur, o.estimate_mm, o.u_mm);
+  o.en_corrected = en_score(xr, ur, o.corrected_mm, o.u_corrected_mm, k);
+  o.zeta_corrected = zeta_score(xr, ur, o.corrected_mm, o.u_corrected_mm);
+  o.en_denoised = std::isnan(o.corrected_denoised_mm)
+                      ? kNaN
+                      : en_score(xr, ur, o.corrected_denoised_mm, o.u_denoised_mm, k);
+  o.en_inflated = en_score_expanded(xr, k * ur, o.estimate_mm, k * o.u_mm + std::abs(o.bias_mm));
+}
+
+void fill_from_correction(MeasurandOutcome& o, double estimate,
+                          const uncertainty::MeasurandSummary& s,
+                          const uncertainty::BiasCorrection& c) {
+  o.estimate_mm = estimate;
+  o.u_mm = s.standard_uncertainty;
+  o.mc_mean_mm = s.mean;
+  o.bias_mm = c.bias;
+  o.bias_standard_error_mm = c.bias_standard_error;
+  o.interval_low_mm = s.probabilistically_symmetric.low;
+  o.interval_high_mm = s.probabilistically_symmetric.high;
+  o.corrected_mm = c.corrected;
+  o.u_corrected_mm = c.standard_uncertainty;
+  o.correction_applied = c.applied;
+  o.note = c.note;
+}
+
+// ---- per-measurement JSON (the resume file) --------------------------------------------------
+
+json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+double to_num(const json& j) { return j.is_null() ? kNaN : j.get<double>(); }
+
+json measurand_to_json(const MeasurandOutcome& o) {
+  return {{"has_reference", o.has_reference},
+          {"reference_mm", num(o.reference_mm)},
+          {"u_reference_mm", num(o.u_reference_mm)},
+          {"reference_method", o.reference_method},
+          {"estimate_mm", num(o.estimate_mm)},
+          {"u_mm", num(o.u_mm)},
+          {"mc_mean_mm", num(o.mc_mean_mm)},
+          {"bias_mm", num(o.bias_mm)},
+          {"bias_standard_error_mm", num(o.bias_standard_error_mm)},
+          {"interval_low_mm", num(o.interval_low_mm)},
+          {"interval_high_mm", num(o.interval_high_mm)},
+          {"corrected_mm", num(o.corrected_mm)},
+          {"u_corrected_mm", num(o.u_corrected_mm)},
+          {"correction_applied", o.correction_applied},
+          {"note", o.note},
+          {"corrected_denoised_mm", num(o.corrected_denoised_mm)},
+          {"u_denoised_mm", num(o.u_denoised_mm)},
+          {"denoised_applied", o.denoised_applied},
+          {"En", num(o.en)},
+          {"En_corrected", num(o.en_corrected)},
+          {"En_denoised", num(o.en_denoised)},
+          {"En_inflated", num(o.en_inflated)},
+          {"zeta", num(o.zeta)},
+          {"zeta_corrected", num(o.zeta_corrected)},
+          {"true_mm", num(o.true_mm)}};
+}
+
+MeasurandOutcome measurand_from_json(const json& j) {
+  MeasurandOutcome o;
+  o.has_reference = j.at("has_reference").get<bool>();
+  o.reference_mm = to_num(j.at("reference_mm"));
+  o.u_reference_mm = to_num(j.at("u_reference_mm"));
+  o.reference_method = j.at("reference_method").get<std::string>();
+  o.estimate_mm = to_num(j.at("estimate_mm"));
+  o.u_mm = to_num(j.at("u_mm"));
+  o.mc_mean_mm = to_num(j.at("mc_mean_mm"));
+  o.bias_mm = to_num(j.at("bias_mm"));
+  o.bias_standard_error_mm = to_num(j.at("bias_standard_error_mm"));
+  o.interval_low_mm = to_num(j.at("interval_low_mm"));
+  o.interval_high_mm = to_num(j.at("interval_high_mm"));
+  o.corrected_mm = to_num(j.at("corrected_mm"));
+  o.u_corrected_mm = to_num(j.at("u_corrected_mm"));
+  o.correction_applied = j.at("correction_applied").get<bool>();
+  o.note = j.at("note").get<std::string>();
+  o.corrected_denoised_mm = to_num(j.at("corrected_denoised_mm"));
+  o.u_denoised_mm = to_num(j.at("u_denoised_mm"));
+  o.denoised_applied = j.at("denoised_applied").get<bool>();
+  o.en = to_num(j.at("En"));
+  o.en_corrected = to_num(j.at("En_corrected"));
+  o.en_denoised = to_num(j.at("En_denoised"));
+  o.en_inflated = to_num(j.at("En_inflated"));
+  o.zeta = to_num(j.at("zeta"));
+  o.zeta_corrected = to_num(j.at("zeta_corrected"));
+  o.true_mm = to_num(j.at("true_mm"));
+  return o;
+}
+
+json outcome_to_json(const MeasurementOutcome& o) {
+  return {{"format", kOutcomeFormat},
+          {"fingerprint", o.fingerprint},
+          {"id", o.id},
+          {"location", o.location},
+          {"orientation_deg", o.orientation_deg},
+          {"height", std::string(to_string(o.height))},
+          {"mode", std::string(em::to_string(o.mode))},
+          {"points", o.points},
+          {"seed", o.seed},
+          {"trials", o.trials},
+          {"wall_seconds", o.wall_seconds},
+          {"diameter", measurand_to_json(o.diameter)},
+          {"roundness", measurand_to_json(o.roundness)}};
+}
+
+MeasurementOutcome outcome_from_json(const json& j) {
+  MeasurementOutcome o;
+  o.fingerprint = j.at("fingerprint").get<std::string>();
+  o.id = j.at("id").get<std::string>();
+  o.location = j.at("location").get<std::string>();
+  o.orientation_deg = j.at("orientation_deg").get<double>();
+  o.height = height_from_string(j.at("height").get<std::string>()).value();
+  o.mode = em::probing_mode_from_string(j.at("mode").get<std::string>()).value();
+  o.points = j.at("points").get<std::size_t>();
+  o.seed = j.at("seed").get<std::uint64_t>();
+  o.trials = j.at("trials").get<std::uint64_t>();
+  o.wall_seconds = j.at("wall_seconds").get<double>();
+  o.diameter = measurand_from_json(j.at("diameter"));
+  o.roundness = measurand_from_json(j.at("roundness"));
+  return o;
+}
+
+/// A previous run's outcome for this fingerprint, if its file is intact and matches.
+std::optional<MeasurementOutcome> load_previous(const fs::path& file,
+                                                const std::string& fingerprint) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return std::nullopt;
+  try {
+    const json j = json::parse(read_bytes(file));
+    if (j.at("format").get<std::string>() != kOutcomeFormat) return std::nullopt;
+    if (j.at("fingerprint").get<std::string>() != fingerprint) return std::nullopt;
+    MeasurementOutcome o = outcome_from_json(j);
+    o.resumed = true;
+    return o;
+  } catch (const std::exception&) {
+    return std::nullopt;  // unreadable or foreign: recompute and overwrite
+  }
+}
+
+std::string residuals_csv(const RingProfileEvaluation& e) {
+  // In angular order about the reference centre.
+  std::vector<std::size_t> order(e.angle_rad.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return e.angle_rad[a] < e.angle_rad[b]; });
+  std::string out = "angle_deg,deviation_um,filtered_deviation_um\n";
+  for (std::size_t i : order) {
+    out += shortest(e.angle_rad[i] * 180.0 / std::numbers::pi) + "," +
+           shortest(e.deviation_mm[i] * kUmPerMm) + "," +
+           shortest(e.filtered_deviation_mm[i] * kUmPerMm) + "\n";
+  }
+  return out;
+}
+
+// ---- tables -------------------------------------------------------------------------------
+
+std::string cell(double v) { return std::isfinite(v) ? shortest(v) : std::string(); }
+
+std::string results_csv(const std::vector<MeasurementOutcome>& outcomes) {
+  std::string out =
+      "id,location,orientation_deg,height,mode,measurand,unit,reference,u_reference,estimate,u,"
+      "mc_mean,bias,corrected,u_corrected,correction_applied,interval_low,interval_high,"
+      "En,En_corrected,zeta,zeta_corrected,corrected_denoised,En_denoised,En_inflated,"
+      "true_value\n";
+  for (const auto& m : outcomes) {
+    for (int which = 0; which < 2; ++which) {
+      const MeasurandOutcome& o = which == 0 ? m.diameter : m.roundness;
+      const double s = which == 0 ? 1.0 : kUmPerMm;
+      const double nan = kNaN;
+      out += m.id + "," + m.location + "," + shortest(m.orientation_deg) + "," +
+             std::string(to_string(m.height)) + "," + std::string(em::to_string(m.mode)) + "," +
+             (which == 0 ? "diameter,mm," : "roundness,um,") +
+             cell(o.has_reference ? o.reference_mm * s : nan) + "," +
+             cell(o.has_reference ? o.u_reference_mm * s : nan) + "," + cell(o.estimate_mm * s) +
+             "," + cell(o.u_mm * s) + "," + cell(o.mc_mean_mm * s) + "," + cell(o.bias_mm * s) +
+             "," + cell(o.corrected_mm * s) + "," + cell(o.u_corrected_mm * s) + "," +
+             (o.correction_applied ? "true" : "false") + "," + cell(o.interval_low_mm * s) + "," +
+             cell(o.interval_high_mm * s) + "," + cell(o.en) + "," + cell(o.en_corrected) + "," +
+             cell(o.zeta) + "," + cell(o.zeta_corrected) + "," +
+             cell(o.corrected_denoised_mm * s) + "," + cell(o.en_denoised) + "," +
+             cell(o.en_inflated) + "," + cell(o.true_mm * s) + "\n";
+    }
+  }
+  return out;
+}
+
+std::string summary_csv(const std::vector<SummaryRow>& rows) {
+  std::string out = "factor,level,measurand,treatment,n,share_abs_En_le_1,mean_En,rms_En\n";
+  for (const auto& r : rows)
+    out += r.factor + "," + r.level + "," + r.measurand + "," + r.treatment + "," +
+           std::to_string(r.n) + "," + shortest(r.share_within_1) + "," + shortest(r.mean_en) +
+           "," + shortest(r.rms_en) + "\n";
+  return out;
+}
+
+json summary_json(const std::vector<SummaryRow>& rows) {
+  json a = json::array();
+  for (const auto& r : rows)
+    a.push_back({{"factor", r.factor},
+                 {"level", r.level},
+                 {"measurand", r.measurand},
+                 {"treatment", r.treatment},
+                 {"n", r.n},
+                 {"share_abs_En_le_1", r.share_within_1},
+                 {"mean_En", r.mean_en},
+                 {"rms_En", r.rms_en}});
+  return a;
+}
+
+constexpr std::array<const char*, 4> kTreatments = {"uncorrected", "corrected", "denoised",
+                                                    "inflated"};
+
+double en_of(const MeasurandOutcome& o, std::size_t treatment) {
+  switch (treatment) {
+    case 0: return o.en;
+    case 1: return o.en_corrected;
+    case 2: return o.en_denoised;
+    default: return o.en_inflated;
+  }
+}
+double reported_of(const MeasurandOutcome& o, std::size_t treatment) {
+  switch (treatment) {
+    case 1: return o.corrected_mm;
+    case 2: return o.corrected_denoised_mm;
+    default: return o.estimate_mm;  // uncorrected and inflated report y
+  }
+}
+
+struct EnStats {
+  std::size_t n = 0, within = 0;
+  double sum = 0.0, sum_sq = 0.0;
+  void add(double e) {
+    if (!std::isfinite(e)) return;
+    ++n;
+    within += std::abs(e) <= 1.0 ? 1 : 0;
+    sum += e;
+    sum_sq += e * e;
+  }
+};
+
+std::vector<TreatmentRow> treatment_rows(const std::vector<MeasurementOutcome>& outcomes) {
+  std::vector<TreatmentRow> rows;
+  for (int which = 0; which < 2; ++which) {
+    for (std::size_t t = 0; t < kTreatments.size(); ++t) {
+      EnStats st;
+      std::size_t ne = 0;
+      double se = 0.0, se2 = 0.0;
+      for (const auto& m : outcomes) {
+        const MeasurandOutcome& o = which == 0 ? m.diameter : m.roundness;
+        st.add(en_of(o, t));
+        const double err = reported_of(o, t) - o.true_mm;
+        if (std::isfinite(err)) {
+          ++ne;
+          se += err;
+          se2 += err * err;
+        }
+      }
+      if (ne == 0) continue;
+      TreatmentRow r;
+      r.measurand = which == 0 ? "diameter" : "roundness";
+      r.treatment = kTreatments[t];
+      r.n = st.n;
+      r.mean_en = st.n ? st.sum / static_cast<double>(st.n) : kNaN;
+      r.rms_en = st.n ? std::sqrt(st.sum_sq / static_cast<double>(st.n)) : kNaN;
+      r.share_within_1 = st.n ? static_cast<double>(st.within) / static_cast<double>(st.n) : kNaN;
+      r.mean_error_mm = se / static_cast<double>(ne);
+      r.rms_error_mm = std::sqrt(se2 / static_cast<double>(ne));
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+std::string treatments_csv(const std::vector<TreatmentRow>& rows) {
+  std::string out =
+      "measurand,treatment,n,mean_En,rms_En,share_abs_En_le_1,mean_error,rms_error,unit\n";
+  for (const auto& r : rows) {
+    const bool d = r.measurand == "diameter";
+    const double s = d ? 1.0 : kUmPerMm;
+    out += r.measurand + "," + r.treatment + "," + std::to_string(r.n) + "," + cell(r.mean_en) +
+           "," + cell(r.rms_en) + "," + cell(r.share_within_1) + "," +
+           cell(r.mean_error_mm * s) + "," + cell(r.rms_error_mm * s) + "," + (d ? "mm" : "um") +
+           "\n";
+  }
+  return out;
+}
+
+void ensure_dir(const fs::path& p) {
+  std::error_code ec;
+  fs::create_directories(p, ec);
+  if (ec) throw std::runtime_error("run_campaign: cannot create directory '" + p.string() +
+                                   "': " + ec.message());
+}
+
+}  // namespace
+
+std::vector<SummaryRow> summarize_campaign(const std::vector<MeasurementOutcome>& outcomes) {
+  using Level = std::function<std::string(const MeasurementOutcome&)>;
+  const std::vector<std::pair<std::string, Level>> factors = {
+      {"all", [](const MeasurementOutcome&) { return std::string("all"); }},
+      {"location", [](const MeasurementOutcome& m) { return m.location; }},
+      {"orientation_deg", [](const MeasurementOutcome& m) { return shortest(m.orientation_deg); }},
+      {"height", [](const MeasurementOutcome& m) { return std::string(to_string(m.height)); }},
+      {"mode", [](const MeasurementOutcome& m) { return std::string(em::to_string(m.mode)); }},
+  };
+  std::vector<SummaryRow> rows;
+  for (const auto& [factor, level_of] : factors) {
+    std::vector<std::string> levels;
+    for (const auto& m : outcomes) {
+      const std::string l = level_of(m);
+      if (std::find(levels.begin(), levels.end(), l) == levels.end()) levels.push_back(l);
+    }
+    for (const std::string& level : levels) {
+      for (int which = 0; which < 2; ++which) {
+        for (std::size_t t = 0; t < kTreatments.size(); ++t) {
+          EnStats st;
+          for (const auto& m : outcomes)
+            if (level_of(m) == level) st.add(en_of(which == 0 ? m.diameter : m.roundness, t));
+          if (st.n == 0) continue;
+          SummaryRow r;
+          r.factor = factor;
+          r.level = level;
+          r.measurand = which == 0 ? "diameter" : "roundness";
+          r.treatment = kTreatments[t];
+          r.n = st.n;
+          r.share_within_1 = static_cast<double>(st.within) / static_cast<double>(st.n);
+          r.mean_en = st.sum / static_cast<double>(st.n);
+          r.rms_en = std::sqrt(st.sum_sq / static_cast<double>(st.n));
+          rows.push_back(r);
+        }
+      }
+    }
+  }
+  return rows;
+}
+
+CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
+                             const CampaignRunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CampaignOutcome outcome;
+  ensure_dir(out_dir);
+  ensure_dir(out_dir / "measurements");
+  ensure_dir(out_dir / "samples");
+  ensure_dir(out_dir / "residuals");
+
+  const std::string model_bytes = read_bytes(campaign.model_path);
+  const em::DigitalModel model = em::parse_digital_model(model_bytes, campaign.model_path.string());
+  const EvaluationSettings& ev = campaign.evaluation;
+  RingEvaluationOptions evaluation;
+  evaluation.reference = ev.reference_circle;
+  evaluation.filter_cutoff_upr = ev.filter_cutoff_upr;
+  const bool run_denoised = options.denoised_treatment && ev.filter_cutoff_upr.has_value();
+
+  for (std::size_t i = 0; i < campaign.measurements.size(); ++i) {
+    const CampaignMeasurement& entry = campaign.measurements[i];
+    // Fingerprint: everything this measurement's numbers depend on.
+    Fingerprint fp;
+    fp.add(kOutcomeFormat);
+    fp.add(model_bytes);
+    fp.add(read_bytes(entry.points_path));
+    Campaign single = campaign;
+    single.measurements = {entry};
+    fp.add(campaign_json(single));
+    for (const fs::path* p : {entry.reference.roundness && std::holds_alternative<ProfileRoundness>(
+                                                              *entry.reference.roundness)
+                                  ? &std::get<ProfileRoundness>(*entry.reference.roundness).profile_path
+                                  : nullptr,
+                              entry.reference.diameter &&
+                                      std::holds_alternative<InterferometerDiameter>(
+                                          *entry.reference.diameter)
+                                  ? &std::get<InterferometerDiameter>(*entry.reference.diameter)
+                                         .profile_path
+                                  : nullptr}) {
+      fp.add(p ? read_bytes(*p) : std::string("-"));
+    }
+    fp.add(run_denoised ? "denoised" : "no-denoised");
+    const auto truth = options.truth.find(entry.id);
+    fp.add(truth == options.truth.end()
+               ? std::string("no-truth")
+               : shortest(truth->second.diameter_mm) + "," + shortest(truth->second.roundness_mm));
+    const std::string fingerprint = fp.hex();
+    const fs::path result_file = out_dir / "measurements" / (entry.id + ".json");
+
+    if (auto previous = load_previous(result_file, fingerprint)) {
+      if (options.on_measurement)
+        options.on_measurement(i, campaign.measurements.size(), entry.id, true);
+      outcome.measurements.push_back(std::move(*previous));
+      ++outcome.resumed;
+      continue;
+    }
+    if (options.on_measurement)
+      options.on_measurement(i, campaign.measurements.size(), entry.id, false);
+    const auto m_start = std::chrono::steady_clock::now();
+
+    const em::Measurement measured = em::read_measurement_csv_file(entry.points_path.string());
+    check_setup(campaign, i, measured);
+
+    MeasurementOutcome m;
+    m.id = entry.id;
+    m.location = entry.setup.location;
+    m.orientation_deg = entry.setup.orientation_deg;
+    m.height = entry.setup.height;
+    m.mode = entry.setup.mode;
+    m.points = static_cast<std::size_t>(measured.size());
+    m.seed = measurement_seed(ev.seed, entry.id);
+    m.trials = ev.trials;
+    m.fingerprint = fingerprint;
+
+    RingUncertaintyOptions uo;
+    uo.evaluation = evaluation;
+    uo.monte_carlo.trials = ev.trials;
+    uo.monte_carlo.seed = m.seed;
+    uo.monte_carlo.threads = options.threads;
+    uo.monte_carlo.coverage_probability = ev.coverage_probability;
+    uo.monte_carlo.progress = options.progress;
+    uo.monte_carlo.cancel = options.cancel;
+    const RingUncertaintyResult a = evaluate_ring_uncertainty(model, measured, uo);
+    if (a.monte_carlo.status == uncertainty::RunStatus::cancelled) {
+      outcome.cancelled = true;
+      break;
+    }
+    fill_from_correction(m.diameter, a.estimate.diameter_mm, a.monte_carlo.summaries[diameter],
+                         a.diameter);
+    fill_from_correction(m.roundness, a.estimate.roundness_mm,
+                         a.monte_carlo.summaries[roundness], a.roundness);
+
+    // Treatment (b): the same virtual experiment on the denoised virtual truth.
+    m.diameter.corrected_denoised_mm = m.diameter.u_denoised_mm = kNaN;
+    m.roundness.corrected_denoised_mm = m.roundness.u_denoised_mm = kNaN;
+    if (run_denoised) {
+      const em::Measurement den = denoised_ring(a.best_estimate, *ev.filter_cutoff_upr);
+      uo.monte_carlo.seed = measurement_seed(ev.seed, entry.id + "#denoised");
+      const RingUncertaintyResult b = evaluate_ring_uncertainty_on_surface(model, den, uo);
+      if (b.monte_carlo.status == uncertainty::RunStatus::cancelled) {
+        outcome.cancelled = true;
+        break;
+      }
+      const auto apply = [](MeasurandOutcome& o, double y, double f_den,
+                            const uncertainty::MeasurandSummary& s) {
+        const auto c = uncertainty::correct_bias(y, shifted(s, y - f_den), true);
+        o.corrected_denoised_mm = c.corrected;
+        o.u_denoised_mm = c.standard_uncertainty;
+        o.denoised_applied = c.applied;
+      };
+      apply(m.diameter, a.estimate.diameter_mm, b.estimate.diameter_mm,
+            b.monte_carlo.summaries[diameter]);
+      apply(m.roundness, a.estimate.roundness_mm, b.estimate.roundness_mm,
+            b.monte_carlo.summaries[roundness]);
+    }
+
+    // References (nominal radius for the profile: the measured LS radius).
+    if (auto r = evaluate_roundness_reference(campaign, i, 0.5 * a.estimate.diameter_mm)) {
+      m.roundness.has_reference = true;
+      m.roundness.reference_mm = r->value_mm;
+      m.roundness.u_reference_mm = r->u_mm;
+      m.roundness.reference_method = r->method;
+    }
+    if (auto d = evaluate_diameter_reference(campaign, i)) {
+      m.diameter.has_reference = true;
+      m.diameter.reference_mm = d->value_mm;
+      m.diameter.u_reference_mm = d->u_mm;
+      m.diameter.reference_method = d->method;
+    }
+    m.diameter.true_mm = truth == options.truth.end() ? kNaN : truth->second.diameter_mm;
+    m.roundness.true_mm = truth == options.truth.end() ? kNaN : truth->second.roundness_mm;
+    score(m.diameter, ev.k);
+    score(m.roundness, ev.k);
+
+    // Files: samples and residuals first, the outcome (the completion marker) last.
+    errormodel::write_file_atomically((out_dir / "samples" / (entry.id + ".csv")).string(),
+                                      ring_samples_csv(a.monte_carlo));
+    errormodel::write_file_atomically(
+        (out_dir / "residuals" / (entry.id + ".csv")).string(),
+        residuals_csv(evaluate_ring_profile(ring_profile(a.best_estimate), evaluation)));
+    m.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    // Round-trip through the file's text so computed and resumed outcomes are identical.
+    const std::string text = outcome_to_json(m).dump(1) + "\n";
+    errormodel::write_file_atomically(result_file.string(), text);
+    MeasurementOutcome stored = outcome_from_json(json::parse(text));
+    outcome.measurements.push_back(std::move(stored));
+    ++outcome.computed;
+  }
+  outcome.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (outcome.cancelled) return outcome;
+
+  outcome.summary = summarize_campaign(outcome.measurements);
+  if (!options.truth.empty()) outcome.treatments = treatment_rows(outcome.measurements);
+
+  json results = json::array();
+  for (const auto& m : outcome.measurements) {
+    json j = outcome_to_json(m);
+    j.erase("wall_seconds");  // the tables are the same whether computed or resumed
+    results.push_back(std::move(j));
+  }
+  errormodel::write_file_atomically((out_dir / "results.csv").string(),
+                                    results_csv(outcome.measurements));
+  errormodel::write_file_atomically(
+      (out_dir / "results.json").string(),
+      json({{"schema", "vcmm.campaign_results"}, {"schema_version", 1}, {"measurements", results}})
+              .dump(1) +
+          "\n");
+  errormodel::write_file_atomically((out_dir / "summary.csv").string(),
+                                    summary_csv(outcome.summary));
+  errormodel::write_file_atomically(
+      (out_dir / "summary.json").string(),
+      json({{"schema", "vcmm.campaign_summary"}, {"schema_version", 1},
+            {"summary", summary_json(outcome.summary)}})
+              .dump(1) +
+          "\n");
+  if (!outcome.treatments.empty())
+    errormodel::write_file_atomically((out_dir / "treatments.csv").string(),
+                                      treatments_csv(outcome.treatments));
+  json info = {{"campaign", campaign.source},
+               {"description", campaign.description},
+               {"measurements", outcome.measurements.size()},
+               {"computed", outcome.computed},
+               {"resumed", outcome.resumed},
+               {"trials_per_measurement", ev.trials},
+               {"seed", ev.seed},
+               {"k", ev.k},
+               {"coverage_probability", ev.coverage_probability},
+               {"residual_angles", "about the reference-circle centre, workpiece (ring) frame"},
+               {"en_sign", "E_n = (reference - measured) / (k sqrt(u_ref^2 + u^2))"},
+               {"reference_circle", std::string(to_string(ev.reference_circle))},
+               {"filter_cutoff_upr", ev.filter_cutoff_upr ? json(*ev.filter_cutoff_upr) : json()},
+               {"denoised_treatment", run_denoised},
+               {"wall_seconds_this_run", outcome.wall_seconds}};
+  for (const auto& [k, v] : options.provenance) info[k] = v;
+  errormodel::write_file_atomically((out_dir / "run_info.json").string(), info.dump(1) + "\n");
+  return outcome;
+}
+
+}  // namespace vcmm::validation

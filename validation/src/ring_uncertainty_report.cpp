@@ -1,0 +1,153 @@
+#include "vcmm/validation/ring_uncertainty_report.h"
+
+#include <array>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "internal/number_text.h"
+
+namespace vcmm::validation {
+namespace {
+
+constexpr double kUmPerMm = 1000.0;
+
+struct MeasurandView {
+  const char* name;
+  const char* unit;
+  double scale;  // mm → unit
+  const uncertainty::MeasurandSummary* summary;
+  const uncertainty::BiasCorrection* correction;
+  double estimate;
+};
+
+nlohmann::json measurand_json(const MeasurandView& v) {
+  const auto& s = *v.summary;
+  const auto& c = *v.correction;
+  nlohmann::json j;
+  j["unit"] = v.unit;
+  j["estimate"] = v.estimate * v.scale;
+  j["mean"] = s.mean * v.scale;
+  j["standard_uncertainty"] = s.standard_uncertainty * v.scale;
+  j["coverage_interval"] = {
+      {"probability", s.probabilistically_symmetric.probability},
+      {"low", s.probabilistically_symmetric.low * v.scale},
+      {"high", s.probabilistically_symmetric.high * v.scale},
+      {"shortest_low", s.shortest.low * v.scale},
+      {"shortest_high", s.shortest.high * v.scale}};
+  j["bias"] = c.bias * v.scale;
+  j["bias_standard_error"] = c.bias_standard_error * v.scale;
+  j["corrected"] = c.corrected * v.scale;
+  j["corrected_standard_uncertainty"] = c.standard_uncertainty * v.scale;
+  j["corrected_interval"] = {{"low", c.interval.low * v.scale},
+                             {"high", c.interval.high * v.scale}};
+  j["correction_applied"] = c.applied;
+  j["correction_refused"] = c.refused;
+  j["note"] = c.note;
+  return j;
+}
+
+std::array<MeasurandView, 2> views(const RingUncertaintyResult& r) {
+  return {{{"diameter", "mm", 1.0, &r.monte_carlo.summaries.at(diameter), &r.diameter,
+            r.estimate.diameter_mm},
+           {"roundness", "um", kUmPerMm, &r.monte_carlo.summaries.at(roundness), &r.roundness,
+            r.estimate.roundness_mm}}};
+}
+
+}  // namespace
+
+std::string ring_uncertainty_json(const RingUncertaintyResult& result,
+                                  const RingUncertaintyOptions& options) {
+  nlohmann::json j;
+  j["schema"] = "vcmm.uncertainty_result";
+  j["schema_version"] = 1;
+  const auto& mc = result.monte_carlo;
+  j["evaluation"] = {
+      {"reference_circle", std::string(to_string(options.evaluation.reference))},
+      {"filter_cutoff_upr", options.evaluation.filter_cutoff_upr
+                                ? nlohmann::json(*options.evaluation.filter_cutoff_upr)
+                                : nlohmann::json(nullptr)}};
+  j["monte_carlo"] = {{"trials", mc.trials},
+                      {"seed", options.monte_carlo.seed},
+                      {"threads", mc.threads_used},
+                      {"status", std::string(uncertainty::to_string(mc.status))},
+                      {"message", mc.message},
+                      {"adaptive", options.adaptive.has_value()},
+                      {"wall_seconds", mc.wall_seconds}};
+  if (mc.summaries.empty()) {  // cancelled below the minimum sample count
+    j["measurands"] = nullptr;
+    return j.dump(2) + "\n";
+  }
+  for (const MeasurandView& v : views(result)) j["measurands"][v.name] = measurand_json(v);
+  if (mc.correlation.size() == 4) j["correlation_diameter_roundness"] = mc.correlation[1];
+  return j.dump(2) + "\n";
+}
+
+std::string ring_uncertainty_text(const RingUncertaintyResult& result,
+                                  const RingUncertaintyOptions& options) {
+  std::ostringstream os;
+  const auto& mc = result.monte_carlo;
+  char line[256];
+  os << "Monte Carlo (JCGM 101): " << mc.trials << " trials, seed " << options.monte_carlo.seed
+     << ", " << mc.threads_used << " thread(s), " << uncertainty::to_string(mc.status);
+  if (!mc.message.empty()) os << " (" << mc.message << ")";
+  std::snprintf(line, sizeof line, ", %.2f s\n", mc.wall_seconds);
+  os << line;
+  os << "roundness: RONt about the " << to_string(options.evaluation.reference) << " circle, ";
+  if (options.evaluation.filter_cutoff_upr) {
+    os << "Gaussian filter " << internal::shortest(*options.evaluation.filter_cutoff_upr)
+       << " UPR\n";
+  } else {
+    os << "unfiltered\n";
+  }
+  if (mc.summaries.empty()) {
+    os << "too few trials completed for statistics\n";
+    return os.str();
+  }
+  const double p = mc.summaries.at(0).probabilistically_symmetric.probability;
+  for (const MeasurandView& v : views(result)) {
+    const auto& s = *v.summary;
+    const auto& c = *v.correction;
+    const int digits = v.scale == 1.0 ? 6 : 4;
+    os << "\n" << v.name << " (" << v.unit << ")\n";
+    auto row = [&](const char* label, double value) {
+      std::snprintf(line, sizeof line, "  %-28s %.*f\n", label, digits, value * v.scale);
+      os << line;
+    };
+    row("estimate from data", v.estimate);
+    row("Monte Carlo mean", s.mean);
+    row("standard uncertainty u", s.standard_uncertainty);
+    std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n",
+                  (std::to_string(static_cast<int>(p * 100.0 + 0.5)) +
+                   " % interval (symmetric)").c_str(),
+                  digits, s.probabilistically_symmetric.low * v.scale, digits,
+                  s.probabilistically_symmetric.high * v.scale);
+    os << line;
+    std::snprintf(line, sizeof line, "  %-28s %.*f (MC standard error %.*f)\n",
+                  "bias (mean - estimate)", digits, c.bias * v.scale, digits,
+                  c.bias_standard_error * v.scale);
+    os << line;
+    row(c.applied ? "corrected estimate" : "reported (uncorrected)", c.corrected);
+    row("its standard uncertainty", c.standard_uncertainty);
+    std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n", "its interval", digits,
+                  c.interval.low * v.scale, digits, c.interval.high * v.scale);
+    os << line;
+    os << "  correction: " << (c.applied ? "applied" : "refused") << " — " << c.note << "\n";
+  }
+  return os.str();
+}
+
+std::string ring_samples_csv(const uncertainty::MonteCarloResult& mc) {
+  std::string out = "diameter_mm,roundness_um\n";
+  out.reserve(out.size() + static_cast<std::size_t>(mc.trials) * 40);
+  const std::size_t q = mc.measurand_count;
+  for (std::uint64_t t = 0; t < mc.trials; ++t) {
+    out += internal::shortest(mc.samples[t * q + diameter]);
+    out += ',';
+    out += internal::shortest(mc.samples[t * q + roundness] * kUmPerMm);
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace vcmm::validation

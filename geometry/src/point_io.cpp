@@ -7,54 +7,15 @@
 #include <sstream>
 #include <string_view>
 
+#include "internal/csv_fields.h"
+
 namespace vcmm::geometry {
 namespace {
 
-std::string_view trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t\r\f\v");
-  if (b == std::string_view::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r\f\v");
-  return s.substr(b, e - b + 1);
-}
-
-// Splits on ',' or ';' when present, else on runs of blanks/tabs.
-std::vector<std::string_view> split_fields(std::string_view s) {
-  std::vector<std::string_view> out;
-  const bool delimited = s.find_first_of(",;") != std::string_view::npos;
-  if (delimited) {
-    std::size_t start = 0;
-    while (true) {
-      const auto pos = s.find_first_of(",;", start);
-      out.push_back(trim(s.substr(start, pos == std::string_view::npos ? s.npos : pos - start)));
-      if (pos == std::string_view::npos) break;
-      start = pos + 1;
-    }
-  } else {
-    std::size_t i = 0;
-    while (i < s.size()) {
-      while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
-      if (i >= s.size()) break;
-      std::size_t j = i;
-      while (j < s.size() && s[j] != ' ' && s[j] != '\t') ++j;
-      out.push_back(s.substr(i, j - i));
-      i = j;
-    }
-  }
-  return out;
-}
-
-enum class ParseStatus { ok, not_a_number, non_finite };
-
-ParseStatus parse_double(std::string_view f, double& value) {
-  if (f.empty()) return ParseStatus::not_a_number;
-  if (f.front() == '+') f.remove_prefix(1);
-  const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
-  if (ptr != f.data() + f.size()) return ParseStatus::not_a_number;
-  if (ec == std::errc::result_out_of_range) return ParseStatus::non_finite;
-  if (ec != std::errc()) return ParseStatus::not_a_number;
-  if (!std::isfinite(value)) return ParseStatus::non_finite;
-  return ParseStatus::ok;
-}
+using internal::FieldStatus;
+using internal::parse_double_field;
+using internal::split_csv_fields;
+using internal::trim_blanks;
 
 [[noreturn]] void fail(const std::string& source, std::size_t line, const std::string& what) {
   std::ostringstream os;
@@ -75,18 +36,18 @@ PointTable read_points_csv(std::istream& in, const std::string& source_name) {
     std::string_view s = raw;
     if (line_no == 1 && s.size() >= 3 && s.substr(0, 3) == "\xEF\xBB\xBF") s.remove_prefix(3);
     if (const auto hash = s.find('#'); hash != std::string_view::npos) s = s.substr(0, hash);
-    s = trim(s);
+    s = trim_blanks(s);
     if (s.empty()) continue;
-    const auto fields = split_fields(s);
+    const auto fields = split_csv_fields(s);
     double v[3] = {0, 0, 0};
     bool numeric = true;  // every field parses as a finite number
     std::size_t bad_field = 0;
-    ParseStatus bad_status = ParseStatus::ok;
+    FieldStatus bad_status = FieldStatus::ok;
     for (std::size_t k = 0; numeric && k < fields.size(); ++k) {
       double value = 0.0;
-      const ParseStatus st = parse_double(fields[k], value);
+      const FieldStatus st = parse_double_field(fields[k], value);
       if (k < 3) v[k] = value;
-      if (st != ParseStatus::ok) {
+      if (st != FieldStatus::ok) {
         numeric = false;
         bad_field = k;
         bad_status = st;
@@ -96,7 +57,7 @@ PointTable read_points_csv(std::istream& in, const std::string& source_name) {
       seen_content = true;
       // A first line with a field that is not a number is a header; numbers gone wrong
       // (nan/inf) or a wrong count of numbers are errors.
-      if (!numeric && bad_status == ParseStatus::not_a_number) continue;
+      if (!numeric && bad_status == FieldStatus::not_a_number) continue;
     }
     if (fields.size() < 2 || fields.size() > 3) {
       fail(source_name, line_no,
@@ -105,7 +66,7 @@ PointTable read_points_csv(std::istream& in, const std::string& source_name) {
     }
     if (!numeric) {
       const std::string field(fields[bad_field]);
-      if (bad_status == ParseStatus::non_finite)
+      if (bad_status == FieldStatus::non_finite)
         fail(source_name, line_no,
              "field " + std::to_string(bad_field + 1) + " is not finite ('" + field + "')");
       fail(source_name, line_no,

@@ -1,7 +1,7 @@
 // internal/csv_fields.h — the field rules shared by the CSV readers of vcmm::geometry
 // (docs/formats.md): trimming, splitting a line on ',' / ';' or on runs of blanks and tabs,
-// parsing a field as a finite double. Used by roundness_profile.cpp; point_io.cpp still has
-// its own identical copy (the same rules, to be switched to this header). Not public API.
+// parsing a field as a finite double. Used by point_io.cpp and roundness_profile.cpp. Not public
+// API.
 #pragma once
 
 #include <charconv>

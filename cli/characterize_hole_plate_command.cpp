@@ -21,6 +21,7 @@
 
 #include "atomic_file.h"
 #include "commands.h"
+#include "run_control.h"
 #include "vcmm/characterization/hole_plate.h"
 #include "vcmm/errormodel/digital_model.h"
 
@@ -191,12 +192,8 @@ int run_hole_plate(const HolePlateOptions& o) {
     std::cout << kName << ": wrote " << o.output << (o.report.empty() ? "" : " and " + o.report)
               << "\n";
     return kOk;
-  } catch (const std::invalid_argument& ex) {  // InvalidInput, InvalidParameter: files, values
-    std::cerr << kName << ": error: " << ex.what() << "\n";
-    return kInvalidInput;
-  } catch (const std::exception& ex) {
-    std::cerr << kName << ": internal error: " << ex.what() << "\n";
-    return kFailure;
+  } catch (const std::exception&) {  // 3 for invalid input, 1 otherwise
+    return report_current_exception("characterize hole-plate");
   }
 }
 

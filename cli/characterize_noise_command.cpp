@@ -15,6 +15,7 @@
 
 #include "atomic_file.h"
 #include "commands.h"
+#include "run_control.h"
 #include "vcmm/characterization/cmm_points_file.h"
 #include "vcmm/characterization/noise.h"
 #include "vcmm/errormodel/digital_model.h"
@@ -122,12 +123,8 @@ int run_noise(const NoiseOptions& o) {
                 << um(c.touch->sigma.u_mm) << ");";
     std::cout << " wrote " << o.output << "\n";
     return kOk;
-  } catch (const std::invalid_argument& ex) {  // InvalidInput / InvalidParameter
-    std::cerr << kName << ": error: " << ex.what() << "\n";
-    return kInvalidInput;
-  } catch (const std::exception& ex) {
-    std::cerr << kName << ": error: " << ex.what() << "\n";
-    return kFailure;
+  } catch (const std::exception&) {  // 3 for invalid input, 1 otherwise
+    return report_current_exception("characterize noise");
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "atomic_file.h"
 #include "commands.h"
+#include "run_control.h"
 #include "vcmm/characterization/cmm_points_file.h"
 #include "vcmm/characterization/probe_sphere.h"
 #include "vcmm/errormodel/digital_model.h"
@@ -47,12 +48,8 @@ int run_sphere(const SphereOptions& o) {
     write_file_atomically(o.output, ch::probe_characterization_json(r, "points file " + o.points));
     std::cout << kName << ": " << r.message << "; wrote " << o.output << "\n";
     return kOk;
-  } catch (const std::invalid_argument& ex) {  // InvalidInput: files, values
-    std::cerr << kName << ": error: " << ex.what() << "\n";
-    return kInvalidInput;
-  } catch (const std::exception& ex) {
-    std::cerr << kName << ": error: " << ex.what() << "\n";
-    return kFailure;
+  } catch (const std::exception&) {  // 3 for invalid input, 1 otherwise
+    return report_current_exception("characterize sphere");
   }
 }
 

@@ -7,24 +7,14 @@
 #include <sstream>
 #include <string>
 
+#include "internal/format.h"
 #include "vcmm/uncertainty/errors.h"
 
 namespace vcmm::uncertainty {
 namespace {
 
-std::string format_double(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
-std::string format_short(double x) {
-  std::ostringstream s;
-  s.precision(4);
-  s << x;
-  return s.str();
-}
+using internal::format_double;
+using internal::format_short;
 
 void require_finite(double x, const char* name) {
   if (!std::isfinite(x)) {

@@ -15,6 +15,8 @@
 // the lowest failing trial is found whatever the scheduling.
 #include "vcmm/uncertainty/monte_carlo.h"
 
+#include "internal/format.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -33,19 +35,8 @@ namespace {
 constexpr unsigned kMaxThreads = 1024;
 constexpr std::uint64_t kNoError = std::numeric_limits<std::uint64_t>::max();
 
-std::string format_double(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
-std::string format_short(double x) {
-  std::ostringstream s;
-  s.precision(4);
-  s << x;
-  return s.str();
-}
+using internal::format_double;
+using internal::format_short;
 
 void validate_common(std::size_t q, const MonteCarloOptions& options, const char* caller) {
   if (q == 0) {

@@ -2,6 +2,8 @@
 // vcmm/uncertainty/statistics.h.
 #include "vcmm/uncertainty/statistics.h"
 
+#include "internal/format.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -33,12 +35,7 @@ class CompensatedSum {
   double compensation_ = 0.0;
 };
 
-std::string format_double(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
+using internal::format_double;
 
 void check_probability(double p, const char* caller) {
   if (!(p > 0.0 && p < 1.0)) {

@@ -90,7 +90,8 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
   char line[256];
   os << "Monte Carlo (JCGM 101): " << mc.trials << " trials, seed " << options.monte_carlo.seed
      << ", " << mc.threads_used << " thread(s), " << uncertainty::to_string(mc.status);
-  if (!mc.message.empty()) os << " (" << mc.message << ")";
+  if (!mc.message.empty() && mc.status != uncertainty::RunStatus::completed)
+    os << " (" << mc.message << ")";
   std::snprintf(line, sizeof line, ", %.2f s\n", mc.wall_seconds);
   os << line;
   os << "roundness: RONt about the " << to_string(options.evaluation.reference) << " circle, ";
@@ -132,7 +133,13 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
     std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n", "its interval", digits,
                   c.interval.low * v.scale, digits, c.interval.high * v.scale);
     os << line;
-    os << "  correction: " << (c.applied ? "applied" : "refused") << " — " << c.note << "\n";
+    // (The engine's note carries the numbers in the library's unit, mm: the JSON keeps it.)
+    os << "  correction: "
+       << (c.applied ? "applied (the interval is the Monte Carlo interval reflected about the "
+                       "estimate)"
+                     : "refused: it would make the value negative; the uncorrected estimate is "
+                       "reported with u enlarged by |bias| and the interval widened by |bias|")
+       << "\n";
   }
   return os.str();
 }

@@ -1,8 +1,10 @@
 // `vcmm uncertainty --model MODEL.json --points MEASURED.csv [--trials M | --adaptive TOL_UM]
 //                   [--seed S] [--threads T] [--reference MZ|MI|LS|MC] [--filter-upr N|none]
+//                   [--bias-treatment shrinkage|paper] [--pilot-trials N]
 //                   [--json] [-o OUT] [--samples OUT.csv] [--progress auto|always|never]`
 // Monte Carlo uncertainty (JCGM 101) of the diameter and roundness of one ring measurement,
-// with the bias and the bias-corrected estimates (docs/uncertainty.md, docs/cli.md).
+// with the bias and the bias-corrected estimates: the roundness by the shrinkage treatment
+// (default) and by the seed study's (docs/uncertainty.md, docs/validation.md, docs/cli.md).
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -39,6 +41,8 @@ struct UncertaintyOptions {
   bool json = false;
   std::string output, samples;
   std::string progress = "auto";
+  std::string bias_treatment = "shrinkage";
+  std::uint64_t pilot_trials = va::ShrinkageOptions{}.pilot_trials;
 };
 
 constexpr std::uint64_t kDefaultTrials = 100'000;
@@ -79,6 +83,8 @@ int run_uncertainty(const UncertaintyOptions& o) {
       options.adaptive = adaptive;
     }
     progress_mode = progress_mode_from_string(o.progress);
+    options.roundness_bias = *va::roundness_bias_treatment_from_string(o.bias_treatment);
+    options.shrinkage.pilot_trials = o.pilot_trials;
   } catch (const std::invalid_argument& ex) {
     std::cerr << "vcmm uncertainty: error: " << ex.what() << "\n";
     return kUsage;
@@ -149,6 +155,16 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
       ->default_val("50");
   cmd->add_option("--coverage", opts->coverage, "coverage probability of the intervals")
       ->default_val(0.95);
+  cmd->add_option("--bias-treatment", opts->bias_treatment,
+                  "roundness bias treatment reported as 'corrected': shrinkage (default: bias at "
+                  "a shrunk surrogate of the true profile, with its own uncertainty) or paper "
+                  "(the seed study's); the study's is always shown too")
+      ->check(CLI::IsMember({"shrinkage", "paper"}))
+      ->default_val("shrinkage");
+  cmd->add_option("--pilot-trials", opts->pilot_trials,
+                  "trials of the shrinkage treatment's pilot run (error power per harmonic)")
+      ->check(CLI::Range(std::uint64_t{20}, std::uint64_t{10'000'000}))
+      ->default_val(va::ShrinkageOptions{}.pilot_trials);
   cmd->add_flag("--json", opts->json, "print JSON instead of the table");
   cmd->add_option("-o,--output", opts->output, "write the report to this file (atomically)");
   cmd->add_option("--samples", opts->samples,

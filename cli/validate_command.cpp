@@ -1,11 +1,15 @@
-// `vcmm validate CAMPAIGN.json -o OUTDIR [--threads T] [--no-denoised] [--progress ...]`
+// `vcmm validate CAMPAIGN.json -o OUTDIR [--threads T] [--denoised] [--progress ...]`
 //   runs the uncertainty evaluation of every measurement of a campaign, compares with the
 //   reference values (E_n, zeta) under the bias treatments, and writes the tables; resumable.
-// `vcmm demo --model MODEL.json -o OUTDIR [--trials M] [--seed S] [--world-seed W] ...`
+// `vcmm demo -o OUTDIR [--model MODEL.json] [--trials M] [--seed S] [--world-seed W]
+//            [--reference MI|MZ|LS|MC] [--form-scale F] [--kinematics corrected|uncorrected]
+//            [--bias-treatment shrinkage|paper] ...`
 //   builds the synthetic ground-truth world (docs/demo.md), writes it as a campaign into
 //   OUTDIR/world and validates it, with the true values known.
 // (docs/validation.md, docs/cli.md.)
+#include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -24,17 +28,36 @@ namespace {
 
 namespace va = vcmm::validation;
 
+std::string upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// Shortest round-trip decimal of a double (as in the library's files).
+std::string internal_shortest(double v) {
+  char buf[32];
+  for (int p = 1; p <= 17; ++p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
 constexpr int kInterrupted = 130;
 
 struct CampaignCliOptions {
   std::string campaign, output, model;
   unsigned threads = 0;
-  bool no_denoised = false;
+  bool denoised = false;
   std::string progress = "auto";
   // demo only
   std::uint64_t trials = 10000;
   std::uint64_t seed = 1;
   std::uint64_t world_seed = va::DemoWorldOptions{}.seed;
+  std::string reference = "MI";
+  double form_scale = 1.0;
+  std::string kinematics = "corrected";
+  std::string bias_treatment = "shrinkage";
 };
 
 void print_summary(const va::CampaignOutcome& o, const std::string& out_dir) {
@@ -69,7 +92,7 @@ int run_campaign_cli(const va::Campaign& campaign, const std::string& out_dir,
   std::unique_ptr<ProgressBar> bar;
   va::CampaignRunOptions options;
   options.threads = o.threads;
-  options.denoised_treatment = !o.no_denoised;
+  options.denoised_treatment = o.denoised;
   options.truth = std::move(truth);
   options.cancel = interrupt.flag();
   options.provenance = std::move(provenance);
@@ -119,30 +142,50 @@ int run_validate(const CampaignCliOptions& o) {
 
 int run_demo(const CampaignCliOptions& o) {
   return guarded("demo", [&] {
-    std::ifstream in(o.model, std::ios::binary);
-    if (!in) throw std::invalid_argument("cannot read the model file '" + o.model + "'");
-    std::ostringstream text;
-    text << in.rdbuf();
-    const errormodel::DigitalModel model = errormodel::parse_digital_model(text.str(), o.model);
+    std::string text;
+    std::string model_name = o.model;
+    if (o.model.empty()) {
+      text = std::string(va::bundled_example_model_json());
+      model_name = "the bundled example model (examples/cmm_model.json)";
+    } else {
+      std::ifstream in(o.model, std::ios::binary);
+      if (!in) throw std::invalid_argument("cannot read the model file '" + o.model + "'");
+      std::ostringstream os;
+      os << in.rdbuf();
+      text = os.str();
+    }
+    const errormodel::DigitalModel model =
+        errormodel::parse_digital_model(text, o.model.empty() ? "examples/cmm_model.json" : o.model);
     va::DemoWorldOptions wo;
     wo.seed = o.world_seed;
-    std::fprintf(stderr, "vcmm demo: building the ground-truth world (seed %llu)\n",
-                 static_cast<unsigned long long>(wo.seed));
+    wo.form_scale = o.form_scale;
+    std::fprintf(stderr, "vcmm demo: building the ground-truth world (seed %llu, form x%s, %s)\n",
+                 static_cast<unsigned long long>(wo.seed), std::to_string(o.form_scale).c_str(),
+                 model_name.c_str());
     const va::DemoWorld world = va::make_demo_world(model, wo);
     va::EvaluationSettings ev;
     ev.trials = o.trials;
     ev.seed = o.seed;
+    ev.reference_circle = *va::reference_circle_from_string(upper(o.reference));
+    ev.kinematics_corrected = o.kinematics == "corrected";
+    ev.bias_treatment = *va::roundness_bias_treatment_from_string(o.bias_treatment);
     const std::filesystem::path world_dir = std::filesystem::path(o.output) / "world";
-    auto truth = va::write_demo_campaign(world, text.str(), ev, world_dir);
+    auto truth = va::write_demo_campaign(world, text, ev, world_dir);
     const va::Campaign campaign = va::read_campaign_file(world_dir / "campaign.json");
-    std::fprintf(stderr, "vcmm demo: %zu measurements, %llu trials each\n",
-                 campaign.measurements.size(), static_cast<unsigned long long>(o.trials));
+    std::fprintf(stderr, "vcmm demo: %zu measurements, %llu trials each, %s reference circle\n",
+                 campaign.measurements.size(), static_cast<unsigned long long>(o.trials),
+                 std::string(va::to_string(ev.reference_circle)).c_str());
     return run_campaign_cli(
         campaign, o.output, o, std::move(truth), "demo",
-        {{"command", "vcmm demo --model " + o.model + " -o " + o.output + " --trials " +
-                         std::to_string(o.trials) + " --seed " + std::to_string(o.seed) +
-                         " --world-seed " + std::to_string(o.world_seed)},
-         {"world", (world_dir / "campaign.json").string()}});
+        {{"command", "vcmm demo" + (o.model.empty() ? std::string() : " --model " + o.model) +
+                         " -o " + o.output + " --trials " + std::to_string(o.trials) +
+                         " --seed " + std::to_string(o.seed) + " --world-seed " +
+                         std::to_string(o.world_seed) + " --reference " + upper(o.reference) +
+                         " --form-scale " + internal_shortest(o.form_scale) + " --kinematics " +
+                         o.kinematics + " --bias-treatment " + o.bias_treatment +
+                         (o.denoised ? " --denoised" : "")},
+         {"world", (world_dir / "campaign.json").string()},
+         {"form_scale", internal_shortest(o.form_scale)}});
   });
 }
 
@@ -151,8 +194,8 @@ void add_common(CLI::App* cmd, CampaignCliOptions& o) {
       ->required();
   cmd->add_option("--threads", o.threads, "Monte Carlo threads (default: all cores)")
       ->default_val(0);
-  cmd->add_flag("--no-denoised", o.no_denoised,
-                "skip treatment (b) (the second Monte Carlo on the denoised truth)");
+  cmd->add_flag("--denoised", o.denoised,
+                "also run treatment (b) (one more Monte Carlo, on the denoised profile)");
   cmd->add_option("--progress", o.progress,
                   "progress bar on stderr: auto (when a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}))
@@ -174,14 +217,32 @@ void add_demo_command(CLI::App& app, int* exit_code) {
   auto o = std::make_shared<CampaignCliOptions>();
   CLI::App* cmd = app.add_subcommand(
       "demo", "the validation demo: a synthetic ground-truth world of 66 measurements, validated");
-  cmd->add_option("--model", o->model, "digital-model JSON (e.g. examples/cmm_model.json)")
-      ->required();
+  cmd->add_option("--model", o->model,
+                  "digital-model JSON (default: the bundled examples/cmm_model.json)");
   cmd->add_option("--trials", o->trials, "Monte Carlo trials per measurement")
       ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}))
       ->default_val(10000);
   cmd->add_option("--seed", o->seed, "seed of the Monte Carlo runs")->default_val(1);
   cmd->add_option("--world-seed", o->world_seed, "seed of the synthetic world")
       ->default_val(va::DemoWorldOptions{}.seed);
+  cmd->add_option("--reference", o->reference,
+                  "reference circle of RONt: MI (the seed study's), MZ, LS or MC")
+      ->check(CLI::IsMember({"MZ", "MI", "LS", "MC"}, CLI::ignore_case))
+      ->default_val("MI");
+  cmd->add_option("--form-scale", o->form_scale,
+                  "multiply the world's true form (tests the method where form dominates)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->default_val(1.0);
+  cmd->add_option("--kinematics", o->kinematics,
+                  "corrected: remove the model's kinematic errors; uncorrected: leave them and "
+                  "only take them into account in the uncertainty (the seed study)")
+      ->check(CLI::IsMember({"corrected", "uncorrected"}))
+      ->default_val("corrected");
+  cmd->add_option("--bias-treatment", o->bias_treatment,
+                  "roundness bias treatment of the 'corrected' columns: shrinkage (default) or "
+                  "paper (the seed study's); both are always reported")
+      ->check(CLI::IsMember({"shrinkage", "paper"}))
+      ->default_val("shrinkage");
   add_common(cmd, *o);
   cmd->callback([o, exit_code] { *exit_code = run_demo(*o); });
 }

@@ -4,7 +4,8 @@
 Usage:  /usr/bin/python3 python/vcmm_report.py OUTDIR [--title T]
 
 OUTDIR is the output directory of `vcmm validate CAMPAIGN.json -o OUTDIR` or
-`vcmm demo -o OUTDIR` (format "agreed v1", described in docs/report.md):
+`vcmm demo -o OUTDIR` (format v2, with the bias-treatment columns; described in docs/report.md
+and docs/validation.md "Output directory"):
   results.csv, summary.csv                 required
   treatments.csv, run_info.json            optional (demo / provenance)
   samples/<id>.csv, residuals/<id>.csv     optional; read only for the measurements shown
@@ -15,9 +16,18 @@ URL) that can be mailed.  Every file is written atomically: a temporary file in 
 directory, then os.replace, so an interrupted run never leaves a half-written file that looks
 whole.
 
+Bias treatments shown (docs/validation.md, "Bias treatments"): uncorrected; "corrected", the
+run's default treatment (column `treatment`: shrinkage for the roundness by default, the seed
+study's for the diameter; its u_corrected includes u_bias, the bias estimate's own
+uncertainty); (a) the seed study's correction (`*_paper` columns), always shown beside the
+default; (b) the bias from the denoised profile (only when the run used --denoised); (c) no
+correction, U = k u + |b_paper|.
+
 Input checks: every required column present, the field count of every line equal to the
 header's, numbers finite (NaN/inf rejected), categorical columns from the agreed sets, E_n
-shares in [0, 1], residual angles in 0..360 and in order.  A failed check prints one line
+shares in [0, 1], residual angles in 0..360 and in order; one default treatment per
+measurand, agreeing with run_info.json's bias_treatment; E_n and zeta present exactly where
+the row has a reference.  A failed check prints one line
 "vcmm_report.py: error: FILE: line N: what is wrong; offending value" and exits with code 3,
 never a traceback.
 
@@ -26,7 +36,7 @@ Exit codes: 0 success; 1 internal error (a bug, with a traceback) or matplotlib 
 be written.
 
 Cost: linear in the size of results.csv and summary.csv plus the few samples/residuals files
-shown; about 4 s of CPU for 56 measurements, dominated by matplotlib's rendering.
+shown; about 5 s of CPU for 66 measurements, dominated by matplotlib's rendering.
 
 Runs with Debian's /usr/bin/python3 (python3-matplotlib 3.6, python3-numpy 1.24); the
 `python3` first on PATH may be another interpreter without matplotlib.
@@ -51,17 +61,25 @@ DPI = 110
 
 RESULTS_COLUMNS = (
     "id", "location", "orientation_deg", "height", "mode", "measurand", "unit", "reference",
-    "u_reference", "estimate", "u", "mc_mean", "bias", "corrected", "u_corrected",
-    "correction_applied", "interval_low", "interval_high", "En", "En_corrected", "zeta",
-    "zeta_corrected", "corrected_denoised", "En_denoised", "En_inflated", "true_value")
-# Numbers every row must carry; the others may be empty (refused corrections, treatments (b)
-# and (c), and the truth, which real data does not have).
-RESULTS_REQUIRED_NUMBERS = ("orientation_deg", "reference", "u_reference", "estimate", "u",
-                            "mc_mean", "bias", "interval_low", "interval_high", "En")
-RESULTS_OPTIONAL_NUMBERS = ("corrected", "u_corrected", "En_corrected", "zeta",
-                            "zeta_corrected", "corrected_denoised", "En_denoised",
+    "u_reference", "estimate", "u", "mc_mean", "interval_low", "interval_high", "treatment",
+    "bias", "u_bias", "corrected", "u_corrected", "correction_applied", "bias_paper",
+    "corrected_paper", "u_corrected_paper", "paper_applied", "En", "En_corrected", "En_paper",
+    "zeta", "zeta_corrected", "corrected_denoised", "En_denoised", "En_inflated", "true_value")
+# Numbers every row must carry (the C++ runner always writes them; a refused correction
+# reports the estimate itself).  The others may be empty: no reference (then no E_n or zeta),
+# no treatment (b) (off by default), no truth (real data).
+RESULTS_REQUIRED_NUMBERS = ("orientation_deg", "estimate", "u", "mc_mean", "interval_low",
+                            "interval_high", "bias", "u_bias", "corrected", "u_corrected",
+                            "bias_paper", "corrected_paper", "u_corrected_paper")
+RESULTS_OPTIONAL_NUMBERS = ("reference", "u_reference", "En", "En_corrected", "En_paper",
+                            "zeta", "zeta_corrected", "corrected_denoised", "En_denoised",
                             "En_inflated", "true_value")
-EN_COLUMNS = ("En", "En_corrected", "En_denoised", "En_inflated")
+RESULTS_NONNEGATIVE = ("u", "u_reference", "u_bias", "u_corrected", "u_corrected_paper")
+RESULTS_FLAGS = ("correction_applied", "paper_applied")
+# Scores that exist exactly when the row has a reference (docs/validation.md: score()).
+SCORES_WITH_REFERENCE = ("En", "En_corrected", "En_paper", "En_inflated", "zeta",
+                         "zeta_corrected")
+EN_COLUMNS = ("En", "En_corrected", "En_paper", "En_denoised", "En_inflated")
 SUMMARY_COLUMNS = ("factor", "level", "measurand", "treatment", "n", "share_abs_En_le_1",
                    "mean_En", "rms_En")
 TREATMENTS_COLUMNS = ("measurand", "treatment", "n", "mean_En", "rms_En", "share_abs_En_le_1",
@@ -72,13 +90,26 @@ RESIDUALS_COLUMNS = ("angle_deg", "deviation_um", "filtered_deviation_um")
 MEASURANDS = ("diameter", "roundness")
 MEASURAND_UNITS = {"diameter": ("mm",), "roundness": ("um", "µm")}
 FACTORS = ("all", "location", "orientation_deg", "height", "mode")
-TREATMENTS = ("uncorrected", "corrected", "denoised", "inflated")
-TREATMENT_LABELS = {
+# Treatments of summary.csv / treatments.csv, in display order.  "corrected" is the run's
+# default treatment (results.csv column `treatment`), "paper" the seed study's.
+TREATMENTS = ("uncorrected", "corrected", "paper", "denoised", "inflated")
+# Values of results.csv `treatment` and run_info.json `bias_treatment`.
+BIAS_TREATMENTS = ("shrinkage", "paper")
+BIAS_TREATMENT_DESCRIPTIONS = {
+    "shrinkage": "bias evaluated at a shrinkage surrogate of the true profile; u_corrected "
+                 "includes u_bias, the bias estimate's own uncertainty",
+    "paper": "bias = Monte Carlo mean − estimate of the virtual experiment on the measured "
+             "profile",
+}
+FIXED_TREATMENT_LABELS = {
     "uncorrected": "uncorrected",
-    "corrected": "(a) corrected",
-    "denoised": "(b) denoised bias",
+    "paper": "(a) seed study",
+    "denoised": "(b) denoised",
     "inflated": "(c) U + |b|",
 }
+# One colour per treatment in every figure; fill tells the series of one panel apart too.
+TREATMENT_COLORS = {"uncorrected": "C0", "corrected": "C1", "paper": "C5", "denoised": "C2",
+                    "inflated": "C4"}
 HEIGHT_ORDER = ("top", "middle", "bottom")
 HEIGHT_PREFERENCE = ("middle", "top", "bottom")   # which height to show first
 MODE_ORDER = ("scanning", "touch_trigger")
@@ -94,6 +125,12 @@ EXPECTED_MEAN_EN = 0.0
 # E_n axes: values beyond this are drawn at the edge with their value written beside them,
 # so that one wild point does not flatten the +-1 band of the others.
 EN_AXIS_CAP = 5.0
+# Series sharing a panel of a per-measurement figure are spread over this fraction of the
+# distance between two measurements, so that none hides another.
+SERIES_SPREAD = 0.36
+# Per-measurement figures label each measurement with its id when every id is at most this
+# long (the demo's are 16-18 characters); longer ids get orientation and height instead.
+MAX_ID_TICK_LENGTH = 24
 # Polar residual plots: the largest |deviation| shown, rounded up to 1, 2, 2.5 or 5 x 10^n um,
 # spans this fraction of the base radius.
 POLAR_SPAN = 0.35
@@ -217,9 +254,20 @@ class ResultRow:
     id: str
     measurand: str
     unit: str
-    correction_applied: bool
+    treatment: str        # the default treatment of this row: shrinkage or paper
+    correction_applied: bool    # the default treatment's correction applied
+    paper_applied: bool         # the seed study's correction applied
     values: dict          # column -> float or None (numeric columns)
     text: dict            # column -> text as in the file
+
+    def applied(self, column):
+        """Whether the correction behind an E_n or value column was applied (False: refused
+        because it would have made the roundness negative)."""
+        if column in ("En_corrected", "corrected", "u_corrected"):
+            return self.correction_applied
+        if column in ("En_paper", "corrected_paper", "u_corrected_paper"):
+            return self.paper_applied
+        return True
 
 
 @dataclasses.dataclass
@@ -230,6 +278,15 @@ class Measurement:
     height: str
     mode: str
     rows: dict            # measurand -> ResultRow
+    # 0 for the first measurement of its (location, orientation, height, mode) in
+    # results.csv, 1 for a repeat (the demo measures C at 0° twice: in the location series
+    # C-O000 and in the orientation series C-R000), ...
+    repeat: int = 0
+
+    @property
+    def line(self):
+        """The first line of the measurement in results.csv."""
+        return min(row.line for row in self.rows.values())
 
     def value(self, measurand, column):
         row = self.rows.get(measurand)
@@ -285,6 +342,41 @@ class Run:
     coverage_factor: float
     coverage_factor_source: str
     coverage_probability: float   # None when run_info.json does not state it
+    default_treatments: dict      # measurand -> results.csv `treatment` (shrinkage, paper)
+
+    def default_treatment(self, measurand="roundness"):
+        """The default bias treatment of a measurand ('shrinkage' or 'paper'), from the
+        results.csv column `treatment`, else run_info.json `bias_treatment` for the roundness
+        (the diameter always uses the study's)."""
+        if measurand in self.default_treatments:
+            return self.default_treatments[measurand]
+        if measurand == "roundness":
+            value = (self.run_info or {}).get("bias_treatment")
+            if value in BIAS_TREATMENTS:
+                return value
+            return "shrinkage"
+        return "paper"
+
+    def default_is_paper(self, measurand):
+        return self.default_treatment(measurand) == "paper"
+
+    def label(self, treatment, measurand=None, *, wrap=False):
+        """Display label of a summary/treatments treatment.  'corrected' names the default
+        treatment of the measurand (of the roundness when measurand is None, adding the
+        diameter's when it differs)."""
+        if treatment != "corrected":
+            return FIXED_TREATMENT_LABELS.get(treatment, treatment)
+        sep = "\n" if wrap else " "
+        if measurand is not None:
+            name = self.default_treatment(measurand)
+            return f"corrected{sep}(default: {name}" + (
+                " = (a)" if name == "paper" else "") + ")"
+        roundness = self.default_treatment("roundness")
+        diameter = self.default_treatment("diameter")
+        if roundness == diameter or "diameter" not in self.default_treatments:
+            return f"corrected{sep}(default: {roundness}" + (
+                " = (a)" if roundness == "paper" else "") + ")"
+        return f"corrected{sep}(default: {roundness};{sep}diameter: {diameter})"
 
     @property
     def expected_rms(self):
@@ -315,6 +407,7 @@ def is_centre_label(label):
 def read_results(path):
     rows = []
     columns = None
+    first_of_measurand = {}   # measurand -> first ResultRow (for the treatment check)
     for line, fields in read_csv_table(path, RESULTS_COLUMNS):
         if columns is None:
             columns = list(fields.keys())
@@ -326,28 +419,59 @@ def read_results(path):
             require_label(fields[column], path, line, column)
         measurand = require_choice(fields["measurand"], MEASURANDS, path, line, "measurand")
         unit = require_choice(fields["unit"], MEASURAND_UNITS[measurand], path, line, "unit")
-        applied = require_choice(fields["correction_applied"], ("true", "false"), path, line,
-                                 "correction_applied") == "true"
+        treatment = require_choice(fields["treatment"], BIAS_TREATMENTS, path, line,
+                                   "treatment")
+        applied, paper_applied = (
+            require_choice(fields[c], ("true", "false"), path, line, c) == "true"
+            for c in RESULTS_FLAGS)
         values = {c: parse_number(fields[c], path, line, c) for c in RESULTS_REQUIRED_NUMBERS}
         values.update({c: parse_number(fields[c], path, line, c, optional=True)
                        for c in RESULTS_OPTIONAL_NUMBERS})
-        for column in ("u", "u_reference", "u_corrected"):
+        for column in RESULTS_NONNEGATIVE:
             if values[column] is not None and values[column] < 0.0:
                 raise InputError(f"{path}: line {line}: column '{column}' must be >= 0; "
                                  f"'{fields[column]}'")
         if values["interval_low"] > values["interval_high"]:
             raise InputError(f"{path}: line {line}: interval_low > interval_high; "
                              f"'{fields['interval_low']}' > '{fields['interval_high']}'")
-        rows.append(ResultRow(line, mid, measurand, unit, applied, values, fields))
+        has_reference = values["reference"] is not None
+        if (values["u_reference"] is not None) != has_reference:
+            raise InputError(f"{path}: line {line}: columns 'reference' and 'u_reference' "
+                             "must be both given or both empty; "
+                             f"'{fields['reference']}', '{fields['u_reference']}'")
+        for column in SCORES_WITH_REFERENCE:
+            if (values[column] is not None) != has_reference:
+                raise InputError(
+                    f"{path}: line {line}: column '{column}' is "
+                    + ("empty although the row has a reference; a number is required"
+                       if has_reference else
+                       f"given although the row has no reference; '{fields[column]}'"))
+        if values["En_denoised"] is not None and (values["corrected_denoised"] is None
+                                                   or not has_reference):
+            raise InputError(f"{path}: line {line}: column 'En_denoised' is given without "
+                             "'corrected_denoised' and a reference; "
+                             f"'{fields['En_denoised']}'")
+        row = ResultRow(line, mid, measurand, unit, treatment, applied, paper_applied, values,
+                        fields)
+        first = first_of_measurand.setdefault(measurand, row)
+        if treatment != first.treatment:
+            raise InputError(f"{path}: line {line}: column 'treatment' is '{treatment}' but "
+                             f"'{first.treatment}' for the {measurand} at line {first.line}; "
+                             "one run has one default treatment per measurand")
+        rows.append(row)
 
     measurements = {}
+    repeats = {}              # (location, orientation, height, mode) -> count so far
     for row in rows:
         f = row.text
         m = measurements.get(row.id)
         if m is None:
+            cell = (f["location"], row.values["orientation_deg"], f["height"], f["mode"])
+            repeat = repeats.get(cell, 0)
+            repeats[cell] = repeat + 1
             measurements[row.id] = Measurement(row.id, f["location"],
                                                row.values["orientation_deg"], f["height"],
-                                               f["mode"], {row.measurand: row})
+                                               f["mode"], {row.measurand: row}, repeat)
             continue
         if row.measurand in m.rows:
             raise InputError(f"{path}: line {row.line}: measurement '{row.id}' has a second "
@@ -364,7 +488,8 @@ def read_results(path):
                              f"orientation_deg {f['orientation_deg']} but "
                              f"{m.orientation_deg:g} at line {first.line}")
         m.rows[row.measurand] = row
-    return columns, rows, list(measurements.values())
+    defaults = {measurand: row.treatment for measurand, row in first_of_measurand.items()}
+    return columns, rows, list(measurements.values()), defaults
 
 
 def read_summary(path):
@@ -495,27 +620,53 @@ def coverage_probability_of(run_info):
     return p
 
 
+def check_bias_treatment(run_info, info_path, rows, results_path):
+    """run_info.json's bias_treatment (top level or under 'evaluation'), when present, must be
+    a known treatment and agree with the roundness rows' `treatment` column."""
+    if not run_info:
+        return
+    places = [("", run_info)]
+    if isinstance(run_info.get("evaluation"), dict):
+        places.append(("evaluation.", run_info["evaluation"]))
+    for prefix, place in places:
+        if "bias_treatment" not in place:
+            continue
+        value = place["bias_treatment"]
+        if value not in BIAS_TREATMENTS:
+            raise InputError(f"{info_path}: key '{prefix}bias_treatment' must be one of "
+                             f"{', '.join(BIAS_TREATMENTS)}; {json.dumps(value)}")
+        row = next((r for r in rows if r.measurand == "roundness"), None)
+        if row is not None and row.treatment != value:
+            raise InputError(f"{info_path}: key '{prefix}bias_treatment' is '{value}' but "
+                             f"{results_path}: line {row.line} gives the roundness "
+                             f"treatment '{row.treatment}'")
+
+
 def load_run(outdir):
     if not os.path.isdir(outdir):
         raise InputError(f"{outdir}: not a directory (expected the output directory of "
                          "`vcmm validate` or `vcmm demo`)")
-    columns, rows, measurements = read_results(os.path.join(outdir, "results.csv"))
+    results_path = os.path.join(outdir, "results.csv")
+    columns, rows, measurements, defaults = read_results(results_path)
     summary = read_summary(os.path.join(outdir, "summary.csv"))
     treatments_path = os.path.join(outdir, "treatments.csv")
     treatments = read_treatments(treatments_path) if os.path.exists(treatments_path) else []
     info_path = os.path.join(outdir, "run_info.json")
     run_info = read_run_info(info_path) if os.path.exists(info_path) else None
+    check_bias_treatment(run_info, info_path, rows, results_path)
 
     appearance = list(dict.fromkeys(m.location for m in measurements))
     centres = [loc for loc in appearance if is_centre_label(loc)]
     centre = centres[0] if centres else appearance[0]
     locations = [centre] + [loc for loc in appearance if loc != centre]
+    # A repeated set-up (same location and orientation, e.g. the demo's C-O000 and C-R000)
+    # follows the first as a block of its own.
     measurements.sort(key=lambda m: (locations.index(m.location), m.orientation_deg,
-                                     rank(m.height, HEIGHT_ORDER), rank(m.mode, MODE_ORDER),
-                                     m.id))
+                                     m.repeat, rank(m.height, HEIGHT_ORDER),
+                                     rank(m.mode, MODE_ORDER), m.id))
     k, k_source = coverage_factor_of(run_info)
     return Run(outdir, measurements, locations, centre, bool(centres), columns, rows, summary,
-               treatments, run_info, k, k_source, coverage_probability_of(run_info))
+               treatments, run_info, k, k_source, coverage_probability_of(run_info), defaults)
 
 
 # --------------------------------------------------------------------------------------------
@@ -620,8 +771,7 @@ def choose_orientation_set(run, available):
     if best is None or not best[0][0]:
         return [], "no location has residual profiles at two or more orientations"
     _, location, height, mode, ms = best
-    ms = sorted({m.orientation_deg: m for m in sorted(ms, key=lambda m: m.id)}.values(),
-                key=lambda m: m.orientation_deg)
+    ms = one_per_orientation(ms)
     if location == run.centre and run.centre_found:
         where = "the centre"
     elif location == run.centre:
@@ -634,6 +784,25 @@ def choose_orientation_set(run, available):
     return ms, (f"Shown: orientations {', '.join(f'{m.orientation_deg:g}°' for m in ms)} at "
                 f"{where}, height {height}, {mode.replace('_', '-')} "
                 f"(ids {', '.join(m.id for m in ms)}).")
+
+
+def one_per_orientation(ms):
+    """One measurement per orientation, in orientation order.  Where an orientation was
+    measured more than once (the demo's C-O000 of the location series and C-R000 of the
+    orientation series), the one nearest in results.csv to the measurements at the other
+    orientations is taken: the one of the same series (ties: the first in the file)."""
+    by_orientation = {}
+    for m in sorted(ms, key=lambda m: m.line):
+        by_orientation.setdefault(m.orientation_deg, []).append(m)
+    single = [c[0].line for c in by_orientation.values() if len(c) == 1]
+    chosen = []
+    for orientation in sorted(by_orientation):
+        candidates = by_orientation[orientation]
+        if len(candidates) > 1 and single:
+            candidates = sorted(candidates,
+                                key=lambda m: min(abs(m.line - line) for line in single))
+        chosen.append(candidates[0])
+    return chosen
 
 
 def choose_histograms(run, available):
@@ -666,6 +835,11 @@ class Figure:
     filename: str
     title: str
     caption: str
+    # What was drawn, for the tests and for anyone checking a figure without looking at it:
+    # every non-empty text of the figure (titles, tick labels, legend entries) and, for the
+    # per-measurement figures, the number of points of each series, keyed "panel: label".
+    texts: list = dataclasses.field(default_factory=list)
+    series: dict = dataclasses.field(default_factory=dict)
 
 
 def import_matplotlib():
@@ -687,12 +861,17 @@ def import_matplotlib():
 
 
 def save(plt, fig, path):
+    """Writes the PNG atomically, closes the figure; returns every non-empty text drawn."""
+    import matplotlib.text
     try:
+        texts = [t.get_text() for t in fig.findobj(matplotlib.text.Text)
+                 if t.get_text() and t.get_visible()]
         write_atomically(path, lambda f: fig.savefig(f, format="png", dpi=DPI,
                                                      bbox_inches="tight",
                                                      metadata={"Software": None}))
     finally:
         plt.close(fig)
+    return texts
 
 
 def top_legend(fig, handles, ncol, title):
@@ -704,6 +883,19 @@ def top_legend(fig, handles, ncol, title):
     fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 1.0 - 0.3 / height),
                ncol=ncol, frameon=False)
     fig.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - strip))
+
+
+def two_row_legend(plt, first, second):
+    """(handles, ncol) of a legend with `first` in its top row and `second` below: matplotlib
+    fills a legend column by column, so the rows are interleaved and the shorter one padded
+    with blank entries."""
+    if not second:
+        return first, len(first)
+    ncol = max(len(first), len(second))
+
+    def padded(row):
+        return row + [plt.Line2D([], [], ls="", label=" ") for _ in range(ncol - len(row))]
+    return [h for pair in zip(padded(first), padded(second)) for h in pair], ncol
 
 
 def marker_of(mode, modes):
@@ -724,86 +916,51 @@ def nice_ceil(x):
     return 10.0 * e
 
 
-def figure_en(plt, np, run, path):
-    ms = run.measurements
-    x = np.arange(len(ms))
-    modes = list(dict.fromkeys(m.mode for m in ms))
-    heights = list(dict.fromkeys(m.height for m in ms))
+def series_offsets(count):
+    """x offsets of `count` series sharing a panel: side by side within SERIES_SPREAD of the
+    measurement's position, so that no marker hides another."""
+    if count <= 1:
+        return [0.0]
+    step = SERIES_SPREAD / (count - 1)
+    return [-SERIES_SPREAD / 2 + i * step for i in range(count)]
 
-    def has(measurand, column):
-        return any(m.value(measurand, column) is not None for m in ms)
 
-    panels = [
-        ("Diameter", [("uncorrected", "diameter", "En", "C0", True),
-                      ("(a) corrected", "diameter", "En_corrected", "C1", False)]),
-        ("Roundness, uncorrected", [("uncorrected", "roundness", "En", "C0", True)]),
-        ("Roundness, corrected (treatment a: bias from the seed-study virtual experiment)",
-         [("(a) corrected", "roundness", "En_corrected", "C1", False)]),
-    ]
-    has_b, has_c = has("roundness", "En_denoised"), has("roundness", "En_inflated")
-    if has_b or has_c:
-        parts = ((["(b) bias from the denoised profile"] if has_b else [])
-                 + (["(c) no correction, U enlarged by |bias|"] if has_c else []))
-        panels.append((("Roundness, treatments " if len(parts) == 2 else "Roundness, treatment ")
-                       + " and ".join(parts),
-                       [("(b) denoised", "roundness", "En_denoised", "C2", True),
-                        ("(c) U + |b|", "roundness", "En_inflated", "C4", False)]))
+def measurement_figure(plt, ms, panels, panel_height):
+    """A figure of `panels` stacked panels sharing the measurement axis."""
     width = min(24.0, max(10.0, 0.2 * len(ms) + 3.0))
-    fig, axes = plt.subplots(len(panels), 1, sharex=True,
-                             figsize=(width, 2.4 * len(panels) + 1.3))
-    handles = {}
-    clipped_total = 0
-    for ax, (title, series) in zip(axes, panels):
-        ax.axhspan(-1.0, 1.0, color="tab:green", alpha=0.08, lw=0)
-        for y in (-1.0, 1.0):
-            ax.axhline(y, color="tab:red", lw=1.0, ls="--")
-        ax.axhline(0.0, color="0.3", lw=0.8)
-        for boundary in [i - 0.5 for i in range(1, len(ms)) if ms[i].location !=
-                         ms[i - 1].location]:
-            ax.axvline(boundary, color="0.6", lw=0.8)
-        measurands = {s[1] for s in series}
-        refused = [i for i, m in enumerate(ms) for meas in measurands
-                   if meas in m.rows and not m.rows[meas].correction_applied]
-        if any(s[2] == "En_corrected" for s in series) and refused:
-            for i in refused:
-                ax.axvspan(i - 0.45, i + 0.45, color="0.5", alpha=0.25, lw=0)
-            handles["refused"] = plt.Rectangle((0, 0), 1, 1, color="0.5", alpha=0.35)
-        values_all = [m.value(s[1], s[2]) for s in series for m in ms]
-        values_all = [abs(v) for v in values_all if v is not None]
-        if not values_all:
-            ax.text(0.5, 0.5, "no values in results.csv", transform=ax.transAxes,
-                    ha="center", va="center", color="0.4")
-        top = min(EN_AXIS_CAP, max(1.5, 1.2 * max(values_all, default=0.0)))
-        for label, measurand, column, color, filled in series:
-            for mode in modes:
-                idx = [i for i, m in enumerate(ms)
-                       if m.mode == mode and m.value(measurand, column) is not None]
-                if not idx:
-                    continue
-                values = np.array([ms[i].value(measurand, column) for i in idx])
-                shown = np.clip(values, -0.97 * top, 0.97 * top)
-                marker = marker_of(mode, modes)
-                ax.scatter(x[idx], shown, marker=marker, s=30, zorder=3,
-                           facecolors=color if filled else "white", edgecolors=color,
-                           linewidths=1.2)
-                for i, v, s in zip(idx, values, shown):
-                    if v != s:
-                        clipped_total += 1
-                        ax.annotate(f"{v:.3g}", (x[i], s), textcoords="offset points",
-                                    xytext=(4, -3 if v > 0 else 3), fontsize=7,
-                                    color="tab:red", va="top" if v > 0 else "bottom")
-                handles.setdefault(("series", label), plt.Line2D(
-                    [], [], ls="", marker="o", markersize=6,
-                    markerfacecolor=color if filled else "white", markeredgecolor=color,
-                    markeredgewidth=1.2, label=f"E_n {label}"))
-        ax.set_ylim(-top, top)
-        ax.set_ylabel("E_n")
-        ax.set_title(title, loc="left")
-    ax = axes[-1]
+    fig, axes = plt.subplots(panels, 1, sharex=True, squeeze=False,
+                             figsize=(width, panel_height * panels + 1.6))
+    return fig, list(axes[:, 0])
+
+
+def draw_setup_boundaries(ax, ms):
+    """Solid grey lines between locations, dotted ones between the set-ups (orientation or a
+    repeat of it) of one location."""
+    for i in range(1, len(ms)):
+        if ms[i].location != ms[i - 1].location:
+            ax.axvline(i - 0.5, color="0.6", lw=0.8)
+        elif (ms[i].orientation_deg, ms[i].repeat) != (ms[i - 1].orientation_deg,
+                                                       ms[i - 1].repeat):
+            ax.axvline(i - 0.5, color="0.7", lw=0.7, ls=":")
+
+
+def label_measurement_axis(ax, run, ms):
+    """Tick labels of the shared measurement axis: the ids when they are short (they name
+    location, orientation, height and mode, and tell a repeated set-up apart), else the
+    orientation and height initial (a repeat marked ′); location names in bold below."""
+    x = list(range(len(ms)))
     ax.set_xlim(-0.6, len(ms) - 0.4)
-    multiple_heights = len(heights) > 1
-    minor_labels = [f"{m.orientation_deg:g}" + (f" {m.height[:1]}" if multiple_heights else "")
-                    for m in ms]
+    use_ids = max(len(m.id) for m in ms) <= MAX_ID_TICK_LENGTH
+    multiple_heights = len({m.height for m in ms}) > 1
+    if use_ids:
+        minor_labels = [m.id for m in ms]
+        what = "tick label = measurement id"
+    else:
+        minor_labels = [f"{m.orientation_deg:g}" + (f" {m.height[:1]}" if multiple_heights
+                                                    else "") + "′" * m.repeat for m in ms]
+        what = ("tick label = orientation (°)" + (", height initial" if multiple_heights
+                                                  else "")
+                + ("; ′ a repeated set-up" if any(m.repeat for m in ms) else ""))
     ax.set_xticks(x, minor_labels, minor=True)
     centres, names = [], []
     for location in run.locations:
@@ -816,47 +973,250 @@ def figure_en(plt, np, run, path):
     # The location names go below the rotated minor labels: ~4.5 pt per 7-pt character.
     pad = 8.0 + 4.5 * max(len(label) for label in minor_labels)
     ax.tick_params(axis="x", which="major", length=0, pad=pad, labelsize=9)
-    ax.grid(False, axis="x", which="both")
-    for a in axes:
-        a.grid(False, axis="x")
-    ax.set_xlabel("measurement, grouped by location (bold names); tick label = orientation (°)"
-                  + (", height initial" if multiple_heights else "") + "; marker = mode")
     for label in ax.get_xticklabels(minor=False):
         label.set_fontweight("bold")
-    legend = [h for key, h in handles.items() if key != "refused"]
-    for mode in modes:
-        legend.append(plt.Line2D([], [], ls="", marker=marker_of(mode, modes), color="0.2",
-                                 markersize=6, label=mode.replace("_", "-")))
-    legend.append(plt.Rectangle((0, 0), 1, 1, color="tab:green", alpha=0.15,
+    ax.set_xlabel("measurement, grouped by location (bold names; solid lines) and set-up "
+                  f"(dotted lines); {what}; marker = mode")
+
+
+def mode_legend(plt, modes):
+    return [plt.Line2D([], [], ls="", marker=marker_of(mode, modes), color="0.2",
+                       markersize=6, label=mode.replace("_", "-")) for mode in modes]
+
+
+def series_handle(plt, label, color, filled):
+    return plt.Line2D([], [], ls="", marker="o", markersize=6,
+                      markerfacecolor=color if filled else "white", markeredgecolor=color,
+                      markeredgewidth=1.2, label=label)
+
+
+def figure_en(plt, np, run, path):
+    ms = run.measurements
+    x = np.arange(len(ms))
+    modes = list(dict.fromkeys(m.mode for m in ms))
+    roundness_default = run.default_treatment("roundness")
+    diameter_default = run.default_treatment("diameter")
+
+    def has(measurand, column):
+        return any(m.value(measurand, column) is not None for m in ms)
+
+    # (treatment, measurand, E_n column, filled marker)
+    diameter = [("uncorrected", "diameter", "En", True),
+                ("corrected", "diameter", "En_corrected", False)]
+    if diameter_default != "paper":
+        diameter.append(("paper", "diameter", "En_paper", True))
+    panels = [
+        (f"Diameter (default treatment: {diameter_default})", diameter),
+        ("Roundness, uncorrected", [("uncorrected", "roundness", "En", True)]),
+        (f"Roundness, corrected by the default treatment '{roundness_default}'"
+         + (" = (a) the seed study's" if roundness_default == "paper" else "")
+         + f": {BIAS_TREATMENT_DESCRIPTIONS[roundness_default]}",
+         [("corrected", "roundness", "En_corrected", False)]),
+    ]
+    if roundness_default != "paper":
+        panels.append(("Roundness, (a) the seed study's correction, beside the default: bias "
+                       "= Monte Carlo mean − estimate of the virtual experiment on the "
+                       "measured profile", [("paper", "roundness", "En_paper", True)]))
+    has_b, has_c = has("roundness", "En_denoised"), has("roundness", "En_inflated")
+    if has_b or has_c:
+        parts = ((["(b) bias from the denoised profile"] if has_b else [])
+                 + (["(c) no correction, U enlarged by |b| of (a)"] if has_c else []))
+        panels.append((("Roundness, treatments " if len(parts) == 2 else "Roundness, treatment ")
+                       + " and ".join(parts),
+                       ([("denoised", "roundness", "En_denoised", True)] if has_b else [])
+                       + ([("inflated", "roundness", "En_inflated", False)] if has_c else [])))
+    fig, axes = measurement_figure(plt, ms, len(panels), 2.4)
+    handles = {}
+    drawn = {}
+    clipped_total = 0
+    for ax, (title, series) in zip(axes, panels):
+        ax.axhspan(-1.0, 1.0, color="tab:green", alpha=0.08, lw=0)
+        for y in (-1.0, 1.0):
+            ax.axhline(y, color="tab:red", lw=1.0, ls="--")
+        ax.axhline(0.0, color="0.3", lw=0.8)
+        draw_setup_boundaries(ax, ms)
+        refused = sorted({i for i, m in enumerate(ms) for _, measurand, column, _ in series
+                          if measurand in m.rows and not m.rows[measurand].applied(column)})
+        for i in refused:
+            ax.axvspan(i - 0.45, i + 0.45, color="0.5", alpha=0.25, lw=0)
+        if refused:
+            handles["refused"] = plt.Rectangle((0, 0), 1, 1, color="0.5", alpha=0.35)
+        values_all = [m.value(s[1], s[2]) for s in series for m in ms]
+        values_all = [abs(v) for v in values_all if v is not None]
+        if not values_all:
+            ax.text(0.5, 0.5, "no values in results.csv", transform=ax.transAxes,
+                    ha="center", va="center", color="0.4")
+        top = min(EN_AXIS_CAP, max(1.5, 1.2 * max(values_all, default=0.0)))
+        for offset, (treatment, measurand, column, filled) in zip(series_offsets(len(series)),
+                                                                  series):
+            color = TREATMENT_COLORS[treatment]
+            label = f"E_n {run.label(treatment)}"
+            count = 0
+            for mode in modes:
+                idx = [i for i, m in enumerate(ms)
+                       if m.mode == mode and m.value(measurand, column) is not None]
+                if not idx:
+                    continue
+                values = np.array([ms[i].value(measurand, column) for i in idx])
+                shown = np.clip(values, -0.97 * top, 0.97 * top)
+                ax.scatter(x[idx] + offset, shown, marker=marker_of(mode, modes), s=30,
+                           zorder=3, facecolors=color if filled else "white",
+                           edgecolors=color, linewidths=1.2)
+                count += len(idx)
+                for i, v, s in zip(idx, values, shown):
+                    if v != s:
+                        clipped_total += 1
+                        ax.annotate(f"{v:.3g}", (x[i] + offset, s), textcoords="offset points",
+                                    xytext=(4, -3 if v > 0 else 3), fontsize=7,
+                                    color="tab:red", va="top" if v > 0 else "bottom")
+            drawn[f"{title}: {run.label(treatment, measurand)}"] = count
+            if count:
+                handles.setdefault(("series", treatment),
+                                   series_handle(plt, label, color, filled))
+        ax.set_ylim(-top, top)
+        ax.set_ylabel("E_n")
+        ax.set_title(title, loc="left", fontsize=9)
+        ax.grid(False, axis="x")
+    label_measurement_axis(axes[-1], run, ms)
+    axes[-1].grid(False, axis="x", which="both")
+    first = [handles[("series", t)] for t in TREATMENTS if ("series", t) in handles]
+    second = mode_legend(plt, modes)
+    second.append(plt.Rectangle((0, 0), 1, 1, color="tab:green", alpha=0.15,
                                 label="|E_n| ≤ 1"))
     if "refused" in handles:
         h = handles["refused"]
         h.set_label("correction refused (would be negative)")
-        legend.append(h)
-    top_legend(fig, legend, min(len(legend), 6),
-               "E_n per measurement (k = %g)" % run.coverage_factor)
-    save(plt, fig, path)
+        second.append(h)
+    legend, ncol = two_row_legend(plt, first, second)
+    top_legend(fig, legend, ncol, "E_n per measurement (k = %g)" % run.coverage_factor)
+    texts = save(plt, fig, path)
+    default_text = (f"the default treatment '{roundness_default}' (hollow orange; "
+                    + BIAS_TREATMENT_DESCRIPTIONS[roundness_default] + ")")
     caption = (
-        "E_n = (reference − measured) / √(U_ref² + U²) (positive: the CMM reads low) of every measurement, one panel per "
-        "measurand and treatment: diameter (filled blue: uncorrected; hollow orange: corrected, "
-        "treatment a), roundness uncorrected, roundness corrected by the seed-study bias "
-        "(treatment a, hollow orange)"
+        "E_n = (reference − measured) / √(U_ref² + U²) (positive: the CMM reads low) of "
+        "every measurement, one panel per measurand and treatment: the diameter (filled blue: "
+        f"uncorrected; hollow orange: corrected by its default treatment, {diameter_default}"
+        + ("; filled brown: (a) the seed study's" if diameter_default != "paper" else "")
+        + "), the roundness uncorrected, the roundness corrected by " + default_text
+        + (", and, in the panel below it, by (a) the seed study's correction (filled brown; "
+           "bias = Monte Carlo mean − estimate on the measured profile), so that the two "
+           "can be compared measurement by measurement"
+           if roundness_default != "paper" else
+           ", which is the seed study's correction (a)")
         + (", and roundness with treatment (b) (bias from the virtual experiment on the "
-           "filtered, denoised profile; filled)" if has_b else "")
+           "filtered, denoised profile; filled green)" if has_b else "")
         + ((" and" if has_b else ", and roundness with") + " treatment (c) (no correction, "
-           "U enlarged to k·u + |bias|; hollow)" if has_c else "")
-        + ". Measurements are grouped by location (vertical lines), then ordered by "
-        "orientation, height and mode; the marker shape gives the mode. The green band is "
+           "U enlarged to k·u + |b| with b of (a); hollow purple)" if has_c else "")
+        + ". Where two series share a panel they are drawn side by side, slightly apart, so "
+        "that neither hides the other. Measurements are grouped by location (solid lines) "
+        "and set-up (dotted lines), then ordered by height and mode; the marker shape gives "
+        "the mode. The green band is "
         "|E_n| ≤ 1: with honest uncertainties about 95 % of the points fall inside it and "
         f"they scatter symmetrically about 0 with an RMS of about {run.expected_rms:.3g}. "
         "Points systematically "
         "on one side reveal a bias; points crowding near 0 reveal overstated uncertainties."
-        + (" Grey columns mark measurements whose correction was refused because it would "
-           "have made the roundness negative." if "refused" in handles else "")
+        + (" Grey columns mark measurements whose correction (of the panel's treatment) was "
+           "refused because it would have made the roundness negative; that treatment then "
+           "reports the estimate itself." if "refused" in handles else "")
         + (f" {clipped_total} value(s) beyond ±{EN_AXIS_CAP:g} are drawn at the edge with "
            "their value written beside them." if clipped_total else "")
         + f" k = {run.coverage_factor:g} ({run.coverage_factor_source}).")
-    return Figure(os.path.basename(path), "E_n per measurement", caption)
+    return Figure(os.path.basename(path), "E_n per measurement", caption, texts, drawn)
+
+
+def figure_errors(plt, np, run, path):
+    """Reported − true value per measurement, with ±U bars, for the uncorrected value, the
+    default treatment and the seed study's: does each cover the truth?"""
+    ms = run.measurements
+    x = np.arange(len(ms))
+    modes = list(dict.fromkeys(m.mode for m in ms))
+    k = run.coverage_factor
+    panels = []
+    for measurand in MEASURANDS:
+        if not any(m.value(measurand, "true_value") is not None for m in ms):
+            continue
+        # (treatment, value column, standard-uncertainty column, filled marker)
+        series = [("uncorrected", "estimate", "u", True),
+                  ("corrected", "corrected", "u_corrected", False)]
+        if not run.default_is_paper(measurand):
+            series.append(("paper", "corrected_paper", "u_corrected_paper", True))
+        panels.append((measurand, series))
+    fig, axes = measurement_figure(plt, ms, len(panels), 3.0)
+    handles = {}
+    drawn = {}
+    for ax, (measurand, series) in zip(axes, panels):
+        unit = next(m.rows[measurand].unit for m in ms if measurand in m.rows)
+        factor = 1000.0 if unit == "mm" else 1.0          # shown in µm
+        ax.axhline(0.0, color="0.3", lw=0.9)
+        draw_setup_boundaries(ax, ms)
+        coverage = []
+        for offset, (treatment, column, u_column, filled) in zip(
+                series_offsets(len(series)), series):
+            color = TREATMENT_COLORS[treatment]
+            idx = [i for i, m in enumerate(ms) if m.value(measurand, "true_value") is not None
+                   and m.value(measurand, column) is not None]
+            errors = np.array([(ms[i].value(measurand, column)
+                                - ms[i].value(measurand, "true_value")) * factor for i in idx])
+            expanded = np.array([k * (ms[i].value(measurand, u_column) or 0.0) * factor
+                                 for i in idx])
+            if idx:
+                ax.errorbar(x[idx] + offset, errors, yerr=expanded, fmt="none", ecolor=color,
+                            elinewidth=1.0, alpha=0.55, capsize=0, zorder=2)
+            for mode in modes:
+                sel = [j for j, i in enumerate(idx) if ms[i].mode == mode]
+                if sel:
+                    ax.scatter(x[[idx[j] for j in sel]] + offset, errors[sel],
+                               marker=marker_of(mode, modes), s=28, zorder=3,
+                               facecolors=color if filled else "white", edgecolors=color,
+                               linewidths=1.2)
+            covered = int(np.sum(np.abs(errors) <= expanded)) if idx else 0
+            short = run.label(treatment, measurand)
+            coverage.append(f"{short}: {covered}/{len(idx)}")
+            drawn[f"{measurand}: {short}"] = len(idx)
+            if idx:
+                handles.setdefault(treatment, series_handle(
+                    plt, run.label(treatment) + (" ± k·u_corrected (incl. u_bias)"
+                                                 if treatment == "corrected" else
+                                                 " ± k·u_corrected_paper"
+                                                 if treatment == "paper" else " ± k·u"),
+                    color, filled))
+        ax.text(0.005, 0.97, "truth within ±U — " + "; ".join(coverage),
+                transform=ax.transAxes, va="top", ha="left", fontsize=8,
+                bbox={"facecolor": "white", "alpha": 0.85, "lw": 0})
+        low, high = ax.get_ylim()
+        ax.set_ylim(low, high + 0.12 * (high - low))      # room for the coverage line
+        ax.set_ylabel("reported − true (µm)")
+        ax.set_title(f"{measurand.capitalize()}: reported − true value (µm"
+                     + ("; converted from mm" if factor != 1.0 else "")
+                     + f"), bars ±U = {k:g}·u of the treatment", loc="left", fontsize=9)
+        ax.grid(False, axis="x")
+    label_measurement_axis(axes[-1], run, ms)
+    axes[-1].grid(False, axis="x", which="both")
+    legend, ncol = two_row_legend(plt, [handles[t] for t in TREATMENTS if t in handles],
+                                  mode_legend(plt, modes))
+    top_legend(fig, legend, ncol,
+               "Error against the truth per measurement (demo: reported − true value)")
+    texts = save(plt, fig, path)
+    default = run.default_treatment("roundness")
+    caption = (
+        "For every measurement whose true value the run knows (the demo), the reported value "
+        "minus the true value, in µm (diameter converted from mm), for the uncorrected "
+        "estimate (filled blue), the default treatment (hollow orange; roundness: "
+        f"'{default}'"
+        + (", whose u_corrected includes u_bias, the standard uncertainty of the bias "
+           "estimate itself" if default == "shrinkage" else "")
+        + ") and"
+        + (" (a) the seed study's correction (filled brown), side by side at each "
+           "measurement" if default != "paper" else " nothing else: the default is the "
+           "seed study's correction (a)")
+        + f". Each bar is ±U = {k:g}·u with the u that treatment reports (uncorrected: u; "
+        "default: u_corrected; seed study: u_corrected_paper). A bar that crosses zero "
+        "covers the truth; the counts are written in each panel. With honest uncertainties "
+        "about 95 % of the bars cross zero and the points scatter about zero."
+        + (" Diameter: the default is the seed study's correction, so only two series are "
+           "drawn." if run.default_is_paper("diameter") and default != "paper" else ""))
+    return Figure(os.path.basename(path), "Error against the truth per measurement", caption,
+                  texts, drawn)
 
 
 def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
@@ -916,7 +1276,7 @@ def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
     polar.legend(loc="upper center", bbox_to_anchor=(0.5, -0.06), fontsize=7, ncol=1,
                  frameon=False)
     fig.suptitle(title, fontweight="bold")
-    save(plt, fig, path)
+    texts = save(plt, fig, path)
     caption = (
         "Radial deviations of the corrected measured profile about the reference circle, "
         + ("at two locations (same orientation, height and mode)" if kind == "locations"
@@ -932,9 +1292,12 @@ def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
            "The angles are those of the residual files (about the reference-circle centre): "
            "if they are machine coordinates, the ring's own form turns with the orientation "
            "(its lobes shift by the orientation angle) while a machine error stays at the "
-           "same angle; in workpiece coordinates it is the other way round. ")
+           "same angle; in workpiece coordinates it is the other way round. "
+           + (f"run_info.json states the angles are "
+              f"'{run.run_info['residual_angles']}'. "
+              if isinstance((run.run_info or {}).get("residual_angles"), str) else ""))
         + selection_note)
-    return Figure(os.path.basename(path), title, caption)
+    return Figure(os.path.basename(path), title, caption, texts)
 
 
 def figure_histogram(plt, np, run, m, samples, path):
@@ -942,7 +1305,7 @@ def figure_histogram(plt, np, run, m, samples, path):
     p = run.coverage_probability
     interval_label = ("coverage interval" if p is None else
                       f"{100 * p:g} % coverage interval")
-    fig, axes = plt.subplots(1, 2, figsize=(13.0, 4.6))
+    fig, axes = plt.subplots(1, 2, figsize=(13.0, 5.0))
     warnings = []
     handles = {}
     for ax, measurand in zip(axes, MEASURANDS):
@@ -953,9 +1316,15 @@ def figure_histogram(plt, np, run, m, samples, path):
             continue
         v = row.values
         if measurand == "diameter":
-            # Display in um relative to the reference: differences are sub-um on ~100 mm.
-            origin, factor = v["reference"], 1000.0
-            xlabel = (f"diameter − reference (µm); reference D = {v['reference']:.6f} mm")
+            # Display in um relative to the reference (else the estimate): differences are
+            # sub-um on ~100 mm.
+            if v["reference"] is not None:
+                origin = v["reference"]
+                xlabel = f"diameter − reference (µm); reference D = {origin:.6f} mm"
+            else:
+                origin = v["estimate"]
+                xlabel = f"diameter − estimate (µm); estimate D = {origin:.6f} mm"
+            factor = 1000.0
         else:
             origin, factor = 0.0, 1.0
             xlabel = "roundness RONt (µm)"
@@ -966,22 +1335,40 @@ def figure_histogram(plt, np, run, m, samples, path):
 
         bins = int(min(80, max(10, round(math.sqrt(len(data))))))
         ax.hist(data, bins=bins, color="0.75", edgecolor="0.55", lw=0.4, zorder=2)
-        ref = shown(v["reference"])
-        band = k * v["u_reference"] * factor
-        handles["refband"] = ax.axvspan(ref - band, ref + band, color="tab:red", alpha=0.12,
-                                        lw=0, zorder=1, label=f"reference ± U_ref (k = {k:g})")
+        if v["reference"] is not None:
+            ref = shown(v["reference"])
+            band = k * v["u_reference"] * factor
+            handles.setdefault("refband", ax.axvspan(
+                ref - band, ref + band, color="tab:red", alpha=0.12, lw=0, zorder=1,
+                label=f"reference ± U_ref (k = {k:g})"))
+        # The default treatment's corrected value with ±k·u_corrected (u_corrected includes
+        # u_bias for the shrinkage treatment).
+        # A roundness is not negative: its band stops at 0.
+        corrected = shown(v["corrected"])
+        u_band = k * v["u_corrected"] * factor
+        low = corrected - u_band if measurand == "diameter" else max(0.0, corrected - u_band)
+        handles.setdefault("corrband", ax.axvspan(
+            low, corrected + u_band, facecolor="none", hatch="///",
+            edgecolor=TREATMENT_COLORS["corrected"], alpha=0.4, lw=0, zorder=1,
+            label="default ± k·u_corrected (incl. u_bias)"))
+        default_is_paper = row.treatment == "paper"
         lines = [
             ("reference", v["reference"], "tab:red", "-", 1.8),
             ("estimate from data", v["estimate"], "black", "-", 1.8),
-            ("Monte Carlo mean", v["mc_mean"], "tab:blue", "--", 1.6),
+            ("Monte Carlo mean (seed-study run)", v["mc_mean"], "tab:blue", "--", 1.6),
             (interval_label, v["interval_low"], "tab:blue", ":", 1.6),
             (None, v["interval_high"], "tab:blue", ":", 1.6),
+            ("corrected, default treatment", v["corrected"], TREATMENT_COLORS["corrected"],
+             "-", 1.8),
         ]
-        if v["corrected"] is not None and row.correction_applied:
-            lines.append(("corrected estimate (a)", v["corrected"], "tab:green", "-", 1.6))
+        if not default_is_paper:
+            lines.append(("(a) seed study's corrected", v["corrected_paper"],
+                          TREATMENT_COLORS["paper"], (0, (5, 2)), 1.8))
         if v["true_value"] is not None:
             lines.append(("true value", v["true_value"], "tab:purple", "-.", 1.6))
         for label, value, color, style, width in lines:
+            if value is None:
+                continue
             h = ax.axvline(shown(value), color=color, ls=style, lw=width, zorder=3)
             if label:
                 h.set_label(label)
@@ -994,39 +1381,81 @@ def figure_histogram(plt, np, run, m, samples, path):
             warnings.append(f"the mean of the {measurand} samples ({mean:.7g}) differs from "
                             f"results.csv mc_mean ({v['mc_mean']:.7g}) by more than 5 "
                             "standard errors")
-        unit = "µm"
-        u_shown = v["u"] * factor
-        ax.set_title(f"{measurand}: u = {u_shown:.3g} {unit}, bias = "
-                     f"{v['bias'] * factor:+.3g} {unit}, E_n = {v['En']:.2f}", fontsize=9)
+
+        def number(value, spec):
+            return "n/a" if value is None else format(value * factor, spec)
+
+        def en(column):
+            return "n/a" if v[column] is None else f"{v[column]:.2f}"
+        u_bias = v["u_bias"] * factor
+        title = [f"{measurand}, uncorrected: u = {number(v['u'], '.3g')} µm, "
+                 f"E_n = {en('En')}",
+                 f"default ({row.treatment}" + (" = (a)" if default_is_paper else "")
+                 + f"): b = {number(v['bias'], '+.3g')} µm, "
+                 f"u_corrected = {number(v['u_corrected'], '.3g')} µm"
+                 + (f" (incl. u_bias = {u_bias:.3g})" if u_bias > 0 else "")
+                 + f", E_n = {en('En_corrected')}"]
+        if not default_is_paper:
+            title.append(f"(a) seed study: b = {number(v['bias_paper'], '+.3g')} µm, "
+                         f"u_corrected = {number(v['u_corrected_paper'], '.3g')} µm, "
+                         f"E_n = {en('En_paper')}")
+        ax.set_title("\n".join(title), fontsize=8.5)
+        flags = []
         if not row.correction_applied:
-            ax.text(0.99, 0.97, "correction refused\n(would be negative)",
-                    transform=ax.transAxes, ha="right", va="top", fontsize=8,
-                    color="tab:green")
+            flags.append("default correction refused\n(would be negative)")
+        elif v["corrected"] == 0.0 and v["estimate"] - v["bias"] < 0.0:
+            flags.append("default: corrected value\nclamped at 0")
+        if not default_is_paper and not row.paper_applied:
+            flags.append("(a) correction refused\n(would be negative)")
+        if flags:
+            ax.text(0.99, 0.97, "\n".join(flags), transform=ax.transAxes, ha="right",
+                    va="top", fontsize=8, color="0.25",
+                    bbox={"facecolor": "white", "alpha": 0.85, "lw": 0})
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"trials (of M = {len(data)})")
-    order = ["reference", "refband", "estimate from data", "Monte Carlo mean",
-             interval_label, "corrected estimate (a)", "true value"]
+    order = ["reference", "refband", "estimate from data", "Monte Carlo mean (seed-study run)",
+             interval_label, "corrected, default treatment", "corrband",
+             "(a) seed study's corrected", "true value"]
     fig.legend(handles=[handles[key] for key in order if key in handles],
                loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4, frameon=False)
     fig.suptitle(f"Monte Carlo samples of {describe(m)}", fontweight="bold")
     fig.tight_layout()
-    save(plt, fig, path)
+    texts = save(plt, fig, path)
+    default = run.default_treatment("roundness")
     caption = (
         f"Histograms of the M = {len(samples['diameter'])} Monte Carlo trials of "
-        f"{describe(m)}: diameter (shown in µm relative to the reference diameter) and "
-        "roundness. Vertical lines: the estimate from the measured data (black), the Monte "
-        "Carlo mean (blue dashed; its distance from the estimate is the bias), the ends of "
-        f"the {interval_label} (blue dotted"
+        f"{describe(m)} (the seed study's virtual experiment on the measured profile): "
+        "diameter (shown in µm relative to the reference diameter) and roundness. Vertical "
+        "lines: the estimate from the measured data (black), the Monte Carlo mean (blue "
+        "dashed; its distance from the estimate is the seed study's bias b of treatment "
+        f"(a)), the ends of the {interval_label} (blue dotted"
         + ("" if p is not None else "; its coverage probability is not stated in "
-           "run_info.json") + "), the corrected estimate = estimate − bias "
-        "(green, when the correction was applied), the reference value (red) with its "
+           "run_info.json") + "), the value corrected by the default treatment (orange, "
+        "with the hatched band ± k·u_corrected, stopped at 0 for the roundness; roundness: "
+        f"'{default}'"
+        + (", whose bias comes from a second Monte Carlo run at a surrogate of the true "
+           "profile, not from these samples, and whose u_corrected includes u_bias, the "
+           "standard uncertainty of that bias estimate" if default == "shrinkage" else "")
+        + ")"
+        + (", the value corrected as the seed study does (a) = estimate − b (brown dashed; "
+           "diameter: the same as the default)" if default != "paper" else "")
+        + ", the reference value (red) with its "
         f"expanded uncertainty U_ref = {k:g}·u_ref (red band)"
         + (" and the true value of the simulation (purple dash-dot)"
            if any(m.value(x, "true_value") is not None for x in MEASURANDS) else "")
-        + ". A roundness histogram lying to the right of the estimate shows the noise bias: "
+        + ". The panel titles give u, the bias b, u_corrected and E_n of each treatment. A "
+        "roundness histogram lying to the right of the estimate shows the noise bias: "
         "noise tends to increase a peak-to-valley value, in the simulation as on the real "
         "machine." + "".join(f" Warning: {w}." for w in warnings))
-    return Figure(os.path.basename(path), f"Monte Carlo histogram, {m.id}", caption)
+    return Figure(os.path.basename(path), f"Monte Carlo histogram, {m.id}", caption, texts)
+
+
+def treatment_tick(run, treatment):
+    """A treatment's label broken over lines, for the crowded axes of treatments.png."""
+    label = run.label(treatment, wrap=True)
+    if treatment == "corrected":
+        return label.replace("(default: ", "(default:\n")
+    return label.replace(" ", "\n", 1) if label.startswith("(") else label
 
 
 def figure_treatments(plt, np, run, path):
@@ -1035,12 +1464,14 @@ def figure_treatments(plt, np, run, path):
     measurands = [x for x in MEASURANDS if any(r.measurand == x for r in rows)]
     lookup = {(r.measurand, r.treatment): r for r in rows}
     has_error = any(r.rms_error is not None for r in rows)
-    fig, axes = plt.subplots(2 if has_error else 1, 3, figsize=(13.0, 7.6 if has_error
-                                                                 else 4.0))
+    fig, axes = plt.subplots(2 if has_error else 1, 3, figsize=(15.0, 8.2 if has_error
+                                                                 else 4.4))
+    ticks = [treatment_tick(run, t) for t in treatments]
     axes = np.atleast_2d(axes)
     x = np.arange(len(treatments))
     width = 0.8 / max(1, len(measurands))
-    colors = {"diameter": "C0", "roundness": "C1"}
+    # Not the treatment colours of the other figures: here colour is the measurand.
+    colors = {"diameter": "C9", "roundness": "C8"}
     panels = [("mean E_n", lambda r: r.mean, EXPECTED_MEAN_EN, "honest 0"),
               ("RMS of E_n", lambda r: r.rms, run.expected_rms,
                f"honest {run.expected_rms:.3g}"),
@@ -1067,13 +1498,13 @@ def figure_treatments(plt, np, run, path):
                     xycoords=("axes fraction", "data"), xytext=(3, 0),
                     textcoords="offset points", ha="left", va="center", color="tab:red",
                     fontsize=7)
-        ax.set_xticks(x, [TREATMENT_LABELS.get(t, t) for t in treatments], rotation=15)
+        ax.set_xticks(x, ticks, fontsize=7)
         ax.set_title(title)
         if "%" in title:
             ax.set_ylim(0, 110)
         else:
-            low, high = ax.get_ylim()
-            ax.set_ylim(min(low, -0.1), max(high, 0.6) * 1.08)
+            low, high = ax.get_ylim()      # room for the value written under a bar
+            ax.set_ylim(min(low * 1.1, -0.1), max(high, 0.6) * 1.08)
     if has_error:
         for ax, measurand in zip(axes[1], measurands):
             unit = next(r.unit for r in rows if r.measurand == measurand)
@@ -1087,7 +1518,7 @@ def figure_treatments(plt, np, run, path):
                 ax.bar(positions, [0.0 if v is None else v * factor for v in values], 0.37,
                        color=color, label=label)
             ax.axhline(0.0, color="0.3", lw=0.8)
-            ax.set_xticks(x, [TREATMENT_LABELS.get(t, t) for t in treatments], rotation=15)
+            ax.set_xticks(x, ticks, fontsize=7)
             ax.set_ylabel(f"{unit_shown}")
             ax.set_title(f"{measurand}: reported value − true value ({unit_shown})")
         for ax in axes[1][len(measurands):]:
@@ -1102,20 +1533,29 @@ def figure_treatments(plt, np, run, path):
     legend.append(plt.Line2D([], [], color="tab:red", ls="--",
                              label="expected with honest uncertainties"))
     top_legend(fig, legend, len(legend), "Bias treatments over the whole run (treatments.csv)")
-    save(plt, fig, path)
+    texts = save(plt, fig, path)
+    default = run.default_treatment("roundness")
     caption = (
-        "For each measurand and bias treatment — uncorrected; (a) corrected by the bias of "
-        "the seed-study virtual experiment; (b) corrected by the bias of the virtual "
-        "experiment run on the filtered, denoised profile; (c) not corrected, expanded "
-        "uncertainty enlarged to k·u + |bias| — the mean and the RMS of E_n and the share of "
-        "|E_n| ≤ 1 over all measurements. The red dashed lines are what honest "
+        "For each measurand and bias treatment present — uncorrected; corrected by the "
+        f"run's default treatment (roundness: '{default}'"
+        + (", bias evaluated at a shrinkage surrogate of the true profile, u_corrected "
+           "including u_bias" if default == "shrinkage" else ", the seed study's") + "; "
+        "diameter: '" + run.default_treatment("diameter") + "'"
+        + (", so its bars equal those of (a)" if run.default_is_paper("diameter") else "")
+        + "); (a) corrected as the seed study does, by the bias of the virtual experiment on "
+        "the measured profile"
+        + ("" if "denoised" not in treatments else "; (b) corrected by the bias of the "
+           "virtual experiment run on the filtered, denoised profile")
+        + "; (c) not corrected, expanded uncertainty enlarged to k·u + |b| with b of (a) — "
+        "the mean and the RMS of E_n and the share of |E_n| ≤ 1 over all measurements. The "
+        "red dashed lines are what honest "
         f"uncertainties give ({run.honest()}, k = {run.coverage_factor:g}). An RMS well "
         f"below {run.expected_rms:.3g} with a share near 100 % means overstated "
         f"uncertainties; an RMS above {run.expected_rms:.3g} "
         "or a mean away from 0 means understated uncertainties or a remaining bias."
         + (" Bottom row: mean and RMS of the error of the reported value against the "
            "simulation's true value (diameter converted to µm)." if has_error else ""))
-    return Figure(os.path.basename(path), "Bias treatments", caption)
+    return Figure(os.path.basename(path), "Bias treatments", caption, texts)
 
 
 def level_order(run, factor, levels):
@@ -1139,7 +1579,7 @@ def figure_factors(plt, np, run, path):
     factors = [f for f in FACTORS[1:] if any(r.factor == f for r in run.summary)]
     measurands = [x for x in MEASURANDS if any(r.measurand == x for r in run.summary)]
     treatments = sorted({r.treatment for r in run.summary}, key=lambda t: rank(t, TREATMENTS))
-    colors = {"uncorrected": "C0", "corrected": "C1", "denoised": "C2", "inflated": "C4"}
+    colors = TREATMENT_COLORS
     lookup = {(r.factor, r.level, r.measurand, r.treatment): r for r in run.summary}
     fig, axes = plt.subplots(len(factors), len(measurands), squeeze=False,
                              figsize=(13.0, 2.9 * len(factors) + 0.8))
@@ -1186,27 +1626,29 @@ def figure_factors(plt, np, run, path):
             ax.set_ylabel("E_n")
     for ax in axes.flat:
         ax.set_ylim(min(lowest * 1.1, -1.1), max(highest * 1.1, 1.1))
-    legend = [plt.Line2D([], [], ls="", marker="s", markersize=7, color=colors.get(t, "C5"),
-                         label=TREATMENT_LABELS.get(t, t)) for t in treatments]
-    legend += [plt.Line2D([], [], ls="", marker="o", color="0.2", markersize=6,
-                          label="mean E_n (filled)"),
-               plt.Line2D([], [], ls="", marker="s", markerfacecolor="white",
-                          markeredgecolor="0.2", markersize=6, label="RMS E_n (hollow)"),
-               plt.Line2D([], [], color="tab:red", ls="--",
-                          label=f"honest RMS {run.expected_rms:.3g}")]
-    top_legend(fig, legend, min(len(legend), 7),
-               "Mean and RMS of E_n by factor level (summary.csv)")
-    save(plt, fig, path)
+    legend, ncol = two_row_legend(
+        plt, [plt.Line2D([], [], ls="", marker="s", markersize=7, color=colors.get(t, "C5"),
+                         label=run.label(t)) for t in treatments],
+        [plt.Line2D([], [], ls="", marker="o", color="0.2", markersize=6,
+                    label="mean E_n (filled)"),
+         plt.Line2D([], [], ls="", marker="s", markerfacecolor="white",
+                    markeredgecolor="0.2", markersize=6, label="RMS E_n (hollow)"),
+         plt.Line2D([], [], color="tab:red", ls="--",
+                    label=f"honest RMS {run.expected_rms:.3g}")])
+    top_legend(fig, legend, ncol, "Mean and RMS of E_n by factor level (summary.csv)")
+    texts = save(plt, fig, path)
     caption = (
         "Mean (filled circles) and RMS (hollow squares) of E_n for each level of each factor "
         "of the run — location, orientation, height, mode — per measurand, one colour per "
-        "bias treatment; n under each level is the number of measurements. With honest "
+        "bias treatment (" + ", ".join(run.label(t) for t in treatments) + "; 'corrected' "
+        "is the run's default treatment, the seed study's (a) is drawn beside it); n under "
+        "each level is the number of measurements. With honest "
         f"uncertainties the mean is near 0 and the RMS near {run.expected_rms:.3g} (red dashed "
         "line; 1/k) at every level, within the scatter of n values (the standard error of a "
         f"mean of n E_n values is about {run.expected_rms:.3g}/√n). A level whose mean or RMS "
         "stands out points at an effect the uncertainty budget misses there, e.g. a "
         "location-dependent machine error.")
-    return Figure(os.path.basename(path), "E_n by factor level", caption)
+    return Figure(os.path.basename(path), "E_n by factor level", caption, texts)
 
 
 def make_figures(run, notes):
@@ -1214,6 +1656,11 @@ def make_figures(run, notes):
     run before anything is written), then draws the figures; returns [Figure]."""
     directory = os.path.join(run.outdir, "figures")
     plans = [(figure_en, (os.path.join(directory, "en_per_measurement.png"),))]
+    if any(m.value(x, "true_value") is not None for m in run.measurements for x in MEASURANDS):
+        plans.append((figure_errors, (os.path.join(directory, "errors_per_measurement.png"),)))
+    else:
+        notes.append("errors_per_measurement.png not drawn: results.csv has no true values "
+                     "(only `vcmm demo` knows them).")
 
     def profiles(chosen):
         return [(m, read_residuals(os.path.join(run.outdir, "residuals", m.id + ".csv")))
@@ -1278,7 +1725,7 @@ th, td { border: 1px solid #ddd; padding: 2px 6px; }
 th { background: #f0f0f0; position: sticky; top: 0; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; font-family: monospace; }
 td.out { background: #fbd5d5; color: #900; font-weight: bold; }
-tr.refused td { font-style: italic; }
+td.refused { font-style: italic; background: #eee; }
 .scroll { max-height: 40em; overflow: auto; border: 1px solid #ccc; }
 figure { margin: 1em 0 2em 0; } figure img { max-width: 100%; border: 1px solid #ddd; }
 figcaption { max-width: 75em; font-size: 0.9em; }
@@ -1329,13 +1776,68 @@ def html_table(header, rows):
     return "".join(out)
 
 
-def summary_cells(r):
+def summary_cells(run, r):
     def number(value, digits):
         return ("", "num") if value is None else (f"{value:.{digits}f}", "num")
     return [(r.factor, None), (r.level, None), (r.measurand, None),
-            (TREATMENT_LABELS.get(r.treatment, r.treatment), None), (str(r.n), "num"),
+            (run.label(r.treatment, r.measurand), None), (str(r.n), "num"),
             number(None if r.share is None else 100.0 * r.share, 1), number(r.mean, 3),
             number(r.rms, 3)]
+
+
+# Cells shaded in the per-measurement table when a treatment's correction was refused.
+REFUSED_DEFAULT_COLUMNS = frozenset(("correction_applied", "corrected", "u_corrected",
+                                     "En_corrected", "zeta_corrected"))
+REFUSED_PAPER_COLUMNS = frozenset(("paper_applied", "corrected_paper", "u_corrected_paper",
+                                   "En_paper"))
+# Tool tips of the per-measurement table's headers.
+COLUMN_NOTES = {
+    "treatment": "the default bias treatment of the corrected columns",
+    "bias": "bias of the default treatment",
+    "u_bias": "standard uncertainty of the default treatment's bias estimate itself; a "
+              "component of u_corrected (0 for the seed study's treatment)",
+    "corrected": "value corrected by the default treatment",
+    "u_corrected": "standard uncertainty of the default treatment's corrected value; "
+                   "includes u_bias",
+    "bias_paper": "bias of the seed study's treatment (a): Monte Carlo mean − estimate",
+    "corrected_paper": "value corrected by the seed study's treatment (a)",
+    "u_corrected_paper": "standard uncertainty of (a)'s corrected value",
+    "En_paper": "E_n of the seed study's treatment (a)",
+    "En_inflated": "E_n of treatment (c): no correction, U = k u + |bias_paper|",
+}
+
+
+def treatment_definitions(run):
+    """The treatments of this run, as a table: label, what is reported, its uncertainty."""
+    default = run.default_treatment("roundness")
+    has_b = any(r.treatment == "denoised" for r in run.summary) or any(
+        r.values.get("En_denoised") is not None for r in run.result_rows)
+    if default == "shrinkage":
+        corrected = ("max(0, y − b), b evaluated at a shrinkage surrogate of the true "
+                     "profile (second Monte Carlo run)",
+                     "u_corrected, which includes u_bias (the bias estimate's own standard "
+                     "uncertainty): u_corrected² = s(y*)² + u_bias² + s(y*)²/M")
+    else:
+        corrected = ("the seed study's correction (a): the corrected and *_paper columns "
+                     "hold the same values", "as (a)")
+    rows = [
+        ("uncorrected", "the estimate y from the data", "u"),
+        (run.label("corrected", "roundness"),
+         "roundness: " + corrected[0] + "; diameter: the "
+         + ("seed study's correction (a)" if run.default_is_paper("diameter") else
+            run.default_treatment("diameter") + " treatment"), corrected[1]),
+        (run.label("paper"), "y − b, b = Monte Carlo mean − y of the virtual experiment on "
+         "the measured profile; refused (y kept) where it would make the roundness negative",
+         "u_corrected_paper = √(u² + u²/M); refused: √(u² + b²)"),
+        (run.label("denoised"), "y − b of the virtual experiment on the denoised profile"
+         + ("" if has_b else " — not run (vcmm --denoised)"), "that run's u"),
+        (run.label("inflated"), "y", "U = k·u + |b| with b of (a)"),
+    ]
+    return ("<p class=\"note\">The bias treatments (docs/validation.md, \"Bias "
+            "treatments\"); 'corrected' is the run's default, shown beside the seed study's "
+            "(a) in the tables and figures.</p>\n"
+            + html_table(["treatment", "reported value", "uncertainty"],
+                         [[(a, None), (b, None), (c, None)] for a, b, c in rows]) + "\n")
 
 
 def results_section(run):
@@ -1351,24 +1853,36 @@ def results_section(run):
     dropped = [c for c in RESULTS_COLUMNS if c not in columns]
     body = []
     highlighted = 0
+    refused_rows = 0
     for r in order:
+        refused = set()
+        if not r.correction_applied:
+            refused |= REFUSED_DEFAULT_COLUMNS
+        if not r.paper_applied:
+            refused |= REFUSED_PAPER_COLUMNS
+        refused_rows += bool(refused)
         cells = []
         for c in columns:
+            classes = []
             if c in numeric:
                 value = r.values.get(c)
-                css = "num"
+                classes.append("num")
                 if c in EN_COLUMNS and value is not None and abs(value) > 1.0:
-                    css = "num out"
+                    classes.append("out")
                     highlighted += 1
-                cells.append((number_text(value, c, r.unit), css))
+                text = number_text(value, c, r.unit)
             else:
-                cells.append((r.text.get(c, ""), None))
-        body.append((cells, not r.correction_applied))
+                text = r.text.get(c, "")
+            if c in refused:
+                classes.append("refused")
+            cells.append((text, " ".join(classes) or None))
+        body.append(cells)
     out = ["<div class=\"scroll\"><table><thead><tr>"]
-    out += [f"<th>{esc(c)}</th>" for c in columns]
+    out += [f"<th title=\"{esc(COLUMN_NOTES[c])}\">{esc(c)}</th>" if c in COLUMN_NOTES
+            else f"<th>{esc(c)}</th>" for c in columns]
     out.append("</tr></thead><tbody>")
-    for cells, refused in body:
-        out.append("<tr class=\"refused\">" if refused else "<tr>")
+    for cells in body:
+        out.append("<tr>")
         for text, css in cells:
             out.append(f"<td class=\"{esc(css)}\">{esc(text)}</td>" if css else
                        f"<td>{esc(text)}</td>")
@@ -1378,8 +1892,19 @@ def results_section(run):
             "measurands), ordered by location, orientation, height and mode. Diameter values "
             "in mm, roundness values in µm (column <code>unit</code>); E_n and ζ are "
             f"dimensionless. {highlighted} E_n value(s) with |E_n| &gt; 1 are highlighted. "
-            "Rows in italics: correction refused (it would have made the roundness "
-            "negative)."
+            "<code>treatment</code>, <code>bias</code>, <code>u_bias</code>, "
+            "<code>corrected</code>, <code>u_corrected</code>, <code>correction_applied</code>"
+            " and <code>En_corrected</code> are the default treatment's (roundness: "
+            f"{esc(run.default_treatment('roundness'))})"
+            + ("; its <code>u_corrected</code> includes <code>u_bias</code>, the standard "
+               "uncertainty of the bias estimate itself (u_corrected² = s(y*)² + u_bias² + "
+               "s(y*)²/M)" if run.default_treatment("roundness") == "shrinkage" else "")
+            + "; the <code>*_paper</code> columns and <code>En_paper</code> are the seed "
+            "study's treatment (a). "
+            f"Shaded italic cells ({refused_rows} row(s)): a correction refused "
+            "(<code>correction_applied</code> or <code>paper_applied</code> false: it would "
+            "have made the roundness negative); that treatment then reports the estimate "
+            "itself."
             + (f" Columns empty in every row and left out: {esc(', '.join(dropped))}."
                if dropped else "") + "</p>")
     return note + "".join(out)
@@ -1427,15 +1952,16 @@ def write_html(run, figures, notes, title):
     parts.append("</ul>\n")
 
     parts.append("<h2 id=\"summary\">Summary (summary.csv)</h2>\n")
+    parts.append(treatment_definitions(run))
     parts.append(f"<p class=\"note\">Share in %. Honest uncertainties give {esc(run.honest())} "
                  f"(k = {run.coverage_factor:g}).</p>\n")
     header = ["factor", "level", "measurand", "treatment", "n", "share |E_n| ≤ 1 (%)",
               "mean E_n", "RMS E_n"]
     overall = sorted((r for r in run.summary if r.factor == "all"),
-                     key=lambda r: (rank(r.treatment, TREATMENTS),
-                                    rank(r.measurand, MEASURANDS)))
+                     key=lambda r: (rank(r.measurand, MEASURANDS),
+                                    rank(r.treatment, TREATMENTS)))
     parts.append("<h3>Whole run</h3>\n")
-    parts.append(html_table(header, [summary_cells(r) for r in overall]) if overall else
+    parts.append(html_table(header, [summary_cells(run, r) for r in overall]) if overall else
                  "<p class=\"note\">summary.csv has no 'all' rows.</p>")
     by_factor = sorted((r for r in run.summary if r.factor != "all"),
                        key=lambda r: (rank(r.factor, FACTORS),
@@ -1446,7 +1972,7 @@ def write_html(run, figures, notes, title):
                                       rank(r.treatment, TREATMENTS)))
     if by_factor:
         parts.append("<h3>By factor level</h3>\n<div class=\"scroll\">")
-        parts.append(html_table(header, [summary_cells(r) for r in by_factor]))
+        parts.append(html_table(header, [summary_cells(run, r) for r in by_factor]))
         parts.append("</div>\n")
 
     parts.append("<h2 id=\"treatments\">Bias treatments (treatments.csv)</h2>\n")
@@ -1457,8 +1983,8 @@ def write_html(run, figures, notes, title):
             def number(value, digits):
                 return ("", "num") if value is None else (f"{value:.{digits}f}", "num")
             digits = 6 if r.unit == "mm" else 4
-            rows.append([(r.measurand, None), (TREATMENT_LABELS.get(r.treatment, r.treatment),
-                                               None), (str(r.n), "num"),
+            rows.append([(r.measurand, None), (run.label(r.treatment, r.measurand), None),
+                         (str(r.n), "num"),
                          number(r.mean, 3), number(r.rms, 3),
                          number(None if r.share is None else 100.0 * r.share, 1),
                          number(r.mean_error, digits), number(r.rms_error, digits),

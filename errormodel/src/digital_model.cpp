@@ -293,4 +293,10 @@ DigitalModel read_digital_model_file(const std::string& path) {
   return read_digital_model(f, path);
 }
 
+DigitalModel with_kinematics_uncorrected(const DigitalModel& model) {
+  DigitalModel out = model;
+  out.kinematics = model.kinematics.uncorrected();
+  return out;
+}
+
 }  // namespace vcmm::errormodel

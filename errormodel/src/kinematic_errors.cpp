@@ -624,6 +624,15 @@ Eigen::Index KinematicModel::parameter_offset(Squareness s) const {
   return offsets_[axis_error_count] + static_cast<int>(s);
 }
 
+KinematicModel KinematicModel::uncorrected() const {
+  KinematicModel out = *this;
+  Eigen::MatrixXd covariance = covariance_;
+  covariance.diagonal() += mean_.cwiseAbs2();
+  out.mean_.setZero();
+  out.set_covariance(covariance);
+  return out;
+}
+
 void KinematicModel::set_covariance(const Eigen::MatrixXd& covariance) {
   const Eigen::Index n = parameter_count();
   const std::string where = "KinematicModel::set_covariance: ";

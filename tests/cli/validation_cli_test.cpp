@@ -100,7 +100,7 @@ TEST(CliDemo, SmallDemoRunsAndResumes) {
   const fs::path out = scratch_dir() / "demo";
   fs::remove_all(out);
   const std::string args = "demo --model '" + kModel + "' -o '" + out.string() +
-                           "' --trials 100 --no-denoised --progress never";
+                           "' --trials 100 --progress never";
   const CliRun a = run(args);
   ASSERT_EQ(a.exit_code, 0) << a.err;
   EXPECT_NE(a.out.find("66 measurements (66 computed, 0 resumed)"), std::string::npos) << a.out;
@@ -113,7 +113,7 @@ TEST(CliDemo, SmallDemoRunsAndResumes) {
   // validate on the demo's own campaign file gives the same table (no truth columns).
   const CliRun v = run("validate '" + (out / "world" / "campaign.json").string() + "' -o '" +
                        (scratch_dir() / "validate").string() +
-                       "' --no-denoised --progress never");
+                       "' --progress never");
   ASSERT_EQ(v.exit_code, 0) << v.err;
   EXPECT_TRUE(fs::is_regular_file(scratch_dir() / "validate" / "summary.csv"));
   EXPECT_FALSE(fs::exists(scratch_dir() / "validate" / "treatments.csv"));

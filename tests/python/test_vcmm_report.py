@@ -36,7 +36,11 @@ if HAVE_PLOTTING:
 SKIP_MESSAGE = ("matplotlib/numpy not importable by " + sys.executable
                 + ": install Debian python3-matplotlib python3-numpy "
                 "(scripts/install-deps.sh does) and run with /usr/bin/python3")
-EN_COLUMNS = ("En", "En_corrected", "En_denoised", "En_inflated")
+EN_COLUMNS = ("En", "En_corrected", "En_paper", "En_denoised", "En_inflated")
+DEMO_FIGURES = ["en_per_measurement.png", "errors_per_measurement.png",
+                "residuals_locations.png", "residuals_orientations.png", "treatments.png",
+                "factors.png", "histogram_C-O000-middle-scan.png",
+                "histogram_C-O000-middle-touch.png"]
 
 
 def run_report(outdir, *extra):
@@ -99,8 +103,9 @@ def count_abs_en_above_one(results_csv):
 
 @unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
 class DemoDirectory(unittest.TestCase):
-    """A `vcmm demo`-like directory: 7 locations (C + 6), 4 orientations, 2 modes, truth,
-    all four treatments, treatments.csv."""
+    """A `vcmm demo`-like directory with the demo's plan: 7 locations at 0° and the centre in
+    4 orientations, 3 heights, 2 modes (66 measurements), truth, the default (shrinkage) and
+    the study's treatment, (c), no (b) (the default), treatments.csv."""
 
     @classmethod
     def setUpClass(cls):
@@ -127,9 +132,7 @@ class DemoDirectory(unittest.TestCase):
         self.assertIn(os.path.join(self.outdir, "report.html"), self.proc.stdout)
 
     def test_every_expected_png_is_valid_and_sensibly_sized(self):
-        expected = ["en_per_measurement.png", "residuals_locations.png",
-                    "residuals_orientations.png", "treatments.png", "factors.png",
-                    "histogram_C-O000-mid-scan.png", "histogram_C-O000-mid-touch.png"]
+        expected = DEMO_FIGURES
         self.assertEqual(sorted(os.listdir(self.figures)), sorted(expected))
         for name in expected:
             with self.subTest(name=name):
@@ -143,7 +146,7 @@ class DemoDirectory(unittest.TestCase):
     def test_histograms_are_one_scanning_and_one_touch_at_the_centre(self):
         names = [n for n in os.listdir(self.figures) if n.startswith("histogram_")]
         ids = sorted(n[len("histogram_"):-len(".png")] for n in names)
-        self.assertEqual(ids, ["C-O000-mid-scan", "C-O000-mid-touch"])
+        self.assertEqual(ids, ["C-O000-middle-scan", "C-O000-middle-touch"])
         self.assertTrue(all(i in self.ids for i in ids))
 
     def test_no_temporary_files_left(self):
@@ -180,7 +183,8 @@ class DemoDirectory(unittest.TestCase):
                 self.assertTrue(os.path.isfile(os.path.join(self.outdir, target)), target)
         hrefs = {a.get("href") for tag, a in self.page.tags if tag == "a"}
         for name in ("results.csv", "summary.csv", "results.json", "treatments.csv",
-                     "figures/en_per_measurement.png", "figures/factors.png"):
+                     "figures/en_per_measurement.png", "figures/errors_per_measurement.png",
+                     "figures/factors.png"):
             self.assertIn(name, hrefs)
 
     def test_html_contains_the_three_tables(self):
@@ -188,6 +192,8 @@ class DemoDirectory(unittest.TestCase):
         self.assertIn("share |E_n| ≤ 1 (%)", headers)          # summary
         self.assertIn("mean error", headers)                     # treatments
         self.assertIn("En_corrected", headers)                   # per-measurement results
+        self.assertIn("En_paper", headers)
+        self.assertIn("u_bias", headers)
         self.assertIn("true_value", headers)
         ids_in_cells = sum(self.html.count(f"<td>{i}</td>") for i in self.ids)
         self.assertEqual(ids_in_cells, 2 * len(self.ids))        # diameter + roundness rows
@@ -197,13 +203,52 @@ class DemoDirectory(unittest.TestCase):
         self.assertGreater(expected, 0, "the fixture should contain some |E_n| > 1")
         self.assertEqual(sum(1 for c in self.page.td_classes if "out" in c.split()), expected)
 
+    def test_refused_corrections_are_shaded(self):
+        with open(os.path.join(self.outdir, "results.csv"), newline="") as f:
+            rows = list(csv.DictReader(f))
+        refused = sum(row[c] == "false" for row in rows
+                      for c in ("correction_applied", "paper_applied"))
+        self.assertGreater(refused, 0, "the fixture should refuse some (a) corrections")
+        self.assertEqual(self.html.count('<td class="refused">false</td>'), refused)
+
     def test_text_is_escaped(self):
         self.assertNotIn("<script>", self.html)
         self.assertIn("Demo &lt;script&gt;alert(1)&lt;/script&gt; &amp; co", self.html)
 
     def test_provenance_shows_run_info_keys(self):
-        for key in ("seed", "trials", "coverage_probability", "factors.locations"):
+        for key in ("seed", "trials_per_measurement", "coverage_probability",
+                    "factors.locations", "bias_treatment", "kinematic_errors", "form_scale",
+                    "reference_circle"):
             self.assertIn(f"<td>{key}</td>", self.html)
+
+    def test_treatments_are_labelled_default_and_seed_study(self):
+        # Summary and treatments tables: the default named after results.csv `treatment`,
+        # the study's beside it; no (b) row when the run did not use --denoised.
+        self.assertIn("<td>corrected (default: shrinkage)</td>", self.html)
+        self.assertIn("<td>corrected (default: paper = (a))</td>", self.html)   # diameter
+        self.assertIn("<td>(a) seed study</td>", self.html)
+        self.assertIn("<td>(c) U + |b|</td>", self.html)
+        # (b) only in the table defining the treatments, marked as not run.
+        self.assertEqual(self.html.count("<td>(b) denoised</td>"), 1)
+        self.assertIn("not run (vcmm --denoised)", self.html)
+
+    def test_whole_run_table_puts_default_and_seed_study_side_by_side(self):
+        start = self.html.index("<h3>Whole run</h3>")
+        table = self.html[start:self.html.index("</table>", start)]
+        roundness = table[table.index("<td>roundness</td>"):]
+        labels = [label for label in ("uncorrected", "corrected (default: shrinkage)",
+                                      "(a) seed study", "(c) U + |b|")]
+        positions = [roundness.index(f"<td>{label}</td>") for label in labels]
+        self.assertEqual(positions, sorted(positions))
+
+    def test_u_corrected_is_said_to_include_u_bias(self):
+        self.assertIn("<code>u_corrected</code> includes <code>u_bias</code>", self.html)
+        self.assertIn("u_corrected, which includes u_bias", self.html)
+
+    def test_captions_compare_default_and_seed_study(self):
+        self.assertIn("(a) the seed study&#x27;s correction (filled brown", self.html)
+        self.assertIn("Error against the truth per measurement", self.html)
+        self.assertIn("A bar that crosses zero covers the truth", self.html)
 
 
 @unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
@@ -215,8 +260,10 @@ class ValidateDirectoryWithoutCentre(unittest.TestCase):
     def setUpClass(cls):
         cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_validate_")
         cls.outdir = os.path.join(cls.tmp, "validate")
-        make_report_fixture.write_fixture(cls.outdir, seed=5, trials=200,
-                                          locations=("P1", "P2", "P3"), validate=True)
+        make_report_fixture.write_fixture(
+            cls.outdir, seed=5, trials=200, locations=("P1", "P2", "P3"),
+            heights=("middle",), validate=True,
+            missing_reference=[("P2-O090-middle-scan", "diameter")])
         with open(os.path.join(cls.outdir, "run_info.json"), "w", encoding="utf-8") as f:
             f.write('{"command": "vcmm validate <campaign> & \\"x\\"", '
                     '"evaluation": {"k": 2, "coverage_probability": 0.95}}\n')
@@ -228,10 +275,12 @@ class ValidateDirectoryWithoutCentre(unittest.TestCase):
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def test_succeeds_without_treatments_figure(self):
+    def test_succeeds_without_treatments_and_errors_figures(self):
         self.assertEqual(self.proc.returncode, 0, self.proc.stderr)
         figures = os.listdir(os.path.join(self.outdir, "figures"))
         self.assertNotIn("treatments.png", figures)
+        self.assertNotIn("errors_per_measurement.png", figures)
+        self.assertIn("errors_per_measurement.png not drawn", self.proc.stderr)
         for name in ("en_per_measurement.png", "residuals_locations.png",
                      "residuals_orientations.png", "factors.png"):
             self.assertIn(name, figures)
@@ -245,10 +294,153 @@ class ValidateDirectoryWithoutCentre(unittest.TestCase):
     def test_empty_columns_are_left_out_and_named(self):
         self.assertIn("left out: corrected_denoised, En_denoised, true_value", self.html)
 
+    def test_a_row_without_reference_has_no_scores(self):
+        import vcmm_report
+        run = vcmm_report.load_run(self.outdir)
+        m = next(m for m in run.measurements if m.id == "P2-O090-middle-scan")
+        for column in ("reference", "u_reference", "En", "En_corrected", "En_paper",
+                       "En_inflated", "zeta"):
+            self.assertIsNone(m.value("diameter", column), column)
+        self.assertIsNotNone(m.value("roundness", "En"))
+
     def test_nested_run_info_is_flattened_and_escaped(self):
         self.assertIn("<td>evaluation.k</td>", self.html)
         self.assertIn("vcmm validate &lt;campaign&gt; &amp; &quot;x&quot;", self.html)
         self.assertIn("k = 2 (run_info.json evaluation.k)", self.html)
+
+
+def draw(outdir, *names):
+    """Draws the named figures of vcmm_report in this process into a fresh figures directory
+    of outdir; returns {name: Figure} (with the texts and series drawn)."""
+    import vcmm_report
+    run = vcmm_report.load_run(outdir)
+    plt, np = vcmm_report.import_matplotlib()
+    functions = {"en_per_measurement": vcmm_report.figure_en,
+                 "errors_per_measurement": vcmm_report.figure_errors,
+                 "treatments": vcmm_report.figure_treatments,
+                 "factors": vcmm_report.figure_factors}
+    directory = os.path.join(outdir, "figures_in_process")
+    return {name: functions[name](plt, np, run, os.path.join(directory, name + ".png"))
+            for name in names}
+
+
+def panel_titles(figure):
+    """The series keys of a per-measurement Figure are "panel title: treatment label"."""
+    return {key.rsplit(": ", 1)[0] for key in figure.series}
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class FigureContents(unittest.TestCase):
+    """What the figures draw (texts and point counts, in-process): the default treatment and
+    the seed study's side by side, for the default run (shrinkage, no (b))."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_contents_")
+        cls.outdir = os.path.join(cls.tmp, "demo")
+        cls.ids = make_report_fixture.write_fixture(cls.outdir, seed=12, trials=40)
+        cls.figures = draw(cls.outdir, "en_per_measurement", "errors_per_measurement",
+                           "treatments", "factors")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_en_figure_has_default_and_seed_study_panels_with_every_point(self):
+        f = self.figures["en_per_measurement"]
+        n = len(self.ids)
+        default = [k for k in f.series if k.startswith("Roundness, corrected by the default "
+                                                       "treatment 'shrinkage'")]
+        study = [k for k in f.series if k.startswith("Roundness, (a) the seed study")]
+        self.assertEqual(len(default), 1, f.series)
+        self.assertEqual(len(study), 1, f.series)
+        self.assertEqual(f.series[default[0]], n)
+        self.assertEqual(f.series[study[0]], n)
+        # Adjacent panels: the study's comes right after the default's.
+        titles = list(dict.fromkeys(k.rsplit(": ", 1)[0] for k in f.series))
+        self.assertEqual(titles.index(study[0].rsplit(": ", 1)[0]),
+                         titles.index(default[0].rsplit(": ", 1)[0]) + 1)
+        for label in ("E_n uncorrected", "E_n corrected (default: shrinkage; diameter: paper)",
+                      "E_n (a) seed study", "E_n (c) U + |b|"):
+            self.assertIn(label, f.texts)
+        self.assertFalse(any("(b)" in t for t in f.texts), "no (b) without --denoised")
+
+    def test_en_figure_ticks_name_the_measurements(self):
+        f = self.figures["en_per_measurement"]
+        for mid in ("C-O000-top-scan", "C-R090-top-touch", "E2-O000-bottom-touch"):
+            self.assertIn(mid, f.texts)
+
+    def test_errors_figure_has_three_series_for_the_roundness(self):
+        f = self.figures["errors_per_measurement"]
+        n = len(self.ids)
+        self.assertEqual(f.series, {
+            "diameter: uncorrected": n, "diameter: corrected (default: paper = (a))": n,
+            "roundness: uncorrected": n, "roundness: corrected (default: shrinkage)": n,
+            "roundness: (a) seed study": n})
+        self.assertTrue(any(t.startswith("truth within ±U — uncorrected:") for t in f.texts))
+        self.assertIn("corrected (default: shrinkage; diameter: paper) ± k·u_corrected "
+                      "(incl. u_bias)", f.texts)
+
+    def test_treatments_figure_has_a_seed_study_bar(self):
+        f = self.figures["treatments"]
+        self.assertIn("(a)\nseed study", f.texts)
+        self.assertIn("corrected\n(default:\nshrinkage;\ndiameter: paper)", f.texts)
+        self.assertIn("(c)\nU + |b|", f.texts)
+        self.assertNotIn("(b)\ndenoised", f.texts)
+        self.assertIn("(a) corrected as the seed study does", f.caption)
+
+    def test_factors_figure_has_the_seed_study(self):
+        self.assertIn("(a) seed study", self.figures["factors"].texts)
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class DenoisedRunWithPaperDefault(unittest.TestCase):
+    """`vcmm demo --denoised --bias-treatment paper`: (b) present, the default is the seed
+    study's, so the labels say so and no separate (a) panel repeats it."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_paper_")
+        cls.outdir = os.path.join(cls.tmp, "paper")
+        make_report_fixture.write_fixture(cls.outdir, seed=13, trials=40, denoised=True,
+                                          bias_treatment="paper", locations=("C", "L1"),
+                                          orientations_deg=(0, 90), heights=("middle",))
+        cls.proc = run_report(cls.outdir)
+        with open(os.path.join(cls.outdir, "report.html"), encoding="utf-8") as f:
+            cls.html = f.read()
+        cls.figures = draw(cls.outdir, "en_per_measurement", "errors_per_measurement",
+                           "treatments")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_succeeds_with_every_figure(self):
+        self.assertEqual(self.proc.returncode, 0, self.proc.stderr)
+        self.assertEqual(sorted(os.listdir(os.path.join(self.outdir, "figures"))),
+                         sorted(DEMO_FIGURES))
+
+    def test_labels_follow_the_treatment_column(self):
+        self.assertIn("<td>corrected (default: paper = (a))</td>", self.html)
+        self.assertNotIn("default: shrinkage", self.html)
+        self.assertIn("<td>(b) denoised</td>", self.html)
+        self.assertIn("<td>(a) seed study</td>", self.html)
+
+    def test_en_figure_has_b_and_no_duplicate_seed_study_panel(self):
+        f = self.figures["en_per_measurement"]
+        titles = panel_titles(f)
+        self.assertTrue(any("default treatment 'paper' = (a)" in t for t in titles), titles)
+        self.assertFalse(any(t.startswith("Roundness, (a)") for t in titles), titles)
+        self.assertIn("E_n (b) denoised", f.texts)
+        self.assertIn("E_n corrected (default: paper = (a))", f.texts)
+
+    def test_errors_figure_has_two_series_per_measurand(self):
+        self.assertEqual(len(self.figures["errors_per_measurement"].series), 4)
+
+    def test_treatments_figure_still_has_the_seed_study_and_b(self):
+        f = self.figures["treatments"]
+        self.assertIn("(a)\nseed study", f.texts)
+        self.assertIn("(b)\ndenoised", f.texts)
 
 
 @unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
@@ -260,8 +452,10 @@ class BadInput(unittest.TestCase):
     def setUpClass(cls):
         cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_bad_")
         cls.base = os.path.join(cls.tmp, "base")
+        # Lines of results.csv: 2, 3 C-O000-middle-scan (diameter, roundness), 4, 5
+        # C-O090-middle-scan, 6, 7 L1-O000-middle-scan, ...
         make_report_fixture.write_fixture(cls.base, seed=3, trials=20, locations=("C", "L1"),
-                                          orientations_deg=(0, 90))
+                                          orientations_deg=(0, 90), heights=("middle",))
         cls.count = 0
 
     @classmethod
@@ -325,6 +519,84 @@ class BadInput(unittest.TestCase):
         self.edit_line(path, 1, lambda line: line.replace(",En_corrected,", ",En_corr,"))
         self.assert_rejected(outdir, "results.csv: line 1", "En_corrected")
 
+    def test_results_header_lacks_a_new_column(self):
+        # Each column of the bias-treatment format, renamed or missing: named in the error.
+        for column in ("treatment", "u_bias", "bias_paper", "corrected_paper",
+                       "u_corrected_paper", "paper_applied", "En_paper"):
+            with self.subTest(column=column):
+                outdir = self.copy()
+                path = os.path.join(outdir, "results.csv")
+                self.edit_line(path, 1, lambda line: ",".join(
+                    column + "_old" if field == column else field
+                    for field in line.split(",")))
+                self.assert_rejected(outdir, "results.csv: line 1", "lacks column(s) "
+                                     + column + ";")
+
+    def test_results_old_format_is_rejected_naming_the_new_columns(self):
+        outdir = self.copy()
+        path = os.path.join(outdir, "results.csv")
+        with open(path, encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+        old = ("id,location,orientation_deg,height,mode,measurand,unit,reference,u_reference,"
+               "estimate,u,mc_mean,bias,corrected,u_corrected,correction_applied,interval_low,"
+               "interval_high,En,En_corrected,zeta,zeta_corrected,corrected_denoised,"
+               "En_denoised,En_inflated,true_value").split(",")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(",".join(old) + "\n")
+            for row in rows:
+                f.write(",".join(row[c] for c in old) + "\n")
+        self.assert_rejected(outdir, "results.csv: line 1", "treatment, u_bias, bias_paper, "
+                             "corrected_paper, u_corrected_paper, paper_applied, En_paper")
+
+    def test_results_paper_applied_not_a_flag(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 3, "paper_applied", "yes")
+        self.assert_rejected(outdir, "results.csv: line 3", "'paper_applied'", "true, false",
+                             "'yes'")
+
+    def test_results_unknown_treatment(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 3, "treatment", "magic")
+        self.assert_rejected(outdir, "results.csv: line 3", "'treatment'",
+                             "shrinkage, paper", "'magic'")
+
+    def test_results_two_default_treatments_for_one_measurand(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 5, "treatment", "paper")
+        self.assert_rejected(outdir, "results.csv: line 5", "'paper' but 'shrinkage'",
+                             "line 3")
+
+    def test_results_u_bias_empty(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 3, "u_bias", "")
+        self.assert_rejected(outdir, "results.csv: line 3", "'u_bias' is empty")
+
+    def test_results_u_bias_negative(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 3, "u_bias", "-0.1")
+        self.assert_rejected(outdir, "results.csv: line 3", "'u_bias' must be >= 0", "'-0.1'")
+
+    def test_results_en_paper_missing_although_referenced(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 4, "En_paper", "")
+        self.assert_rejected(outdir, "results.csv: line 4", "'En_paper' is empty although "
+                             "the row has a reference")
+
+    def test_results_reference_without_its_uncertainty(self):
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "results.csv"), 6, "u_reference", "")
+        self.assert_rejected(outdir, "results.csv: line 6", "'reference' and 'u_reference'")
+
+    def test_run_info_bias_treatment_contradicts_results(self):
+        outdir = self.copy()
+        path = os.path.join(outdir, "run_info.json")
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text.replace('"bias_treatment": "shrinkage"', '"bias_treatment": "paper"'))
+        self.assert_rejected(outdir, "run_info.json", "'bias_treatment' is 'paper'",
+                             "results.csv: line 3", "'shrinkage'")
+
     def test_results_value_not_a_number(self):
         outdir = self.copy()
         path = os.path.join(outdir, "results.csv")
@@ -344,7 +616,7 @@ class BadInput(unittest.TestCase):
     def test_results_wrong_field_count(self):
         outdir = self.copy()
         self.edit_line(os.path.join(outdir, "results.csv"), 6, lambda line: line + ",1")
-        self.assert_rejected(outdir, "results.csv: line 6", "27 fields", "header has 26")
+        self.assert_rejected(outdir, "results.csv: line 6", "34 fields", "header has 33")
 
     def test_results_unknown_measurand(self):
         outdir = self.copy()
@@ -371,6 +643,13 @@ class BadInput(unittest.TestCase):
         self.set_field(os.path.join(outdir, "summary.csv"), 2, "share_abs_En_le_1", "95.4")
         self.assert_rejected(outdir, "summary.csv: line 2", "fraction in [0, 1]", "'95.4'")
 
+    def test_summary_unknown_treatment(self):
+        # 'paper' is a treatment of summary.csv now; a misspelt one is rejected.
+        outdir = self.copy()
+        self.set_field(os.path.join(outdir, "summary.csv"), 4, "treatment", "papers")
+        self.assert_rejected(outdir, "summary.csv: line 4", "uncorrected, corrected, paper, "
+                             "denoised, inflated", "'papers'")
+
     def test_treatments_unknown_treatment(self):
         outdir = self.copy()
         self.set_field(os.path.join(outdir, "treatments.csv"), 3, "treatment", "magic")
@@ -384,22 +663,22 @@ class BadInput(unittest.TestCase):
 
     def test_residuals_not_a_number(self):
         outdir = self.copy()
-        path = os.path.join(outdir, "residuals", "C-O000-mid-scan.csv")
+        path = os.path.join(outdir, "residuals", "C-O000-middle-scan.csv")
         self.set_field(path, 7, "deviation_um", "abc")
-        self.assert_rejected(outdir, os.path.join("residuals", "C-O000-mid-scan.csv"),
+        self.assert_rejected(outdir, os.path.join("residuals", "C-O000-middle-scan.csv"),
                              "line 7", "'abc'")
 
     def test_residuals_angles_out_of_order(self):
         outdir = self.copy()
-        path = os.path.join(outdir, "residuals", "C-O000-mid-scan.csv")
+        path = os.path.join(outdir, "residuals", "C-O000-middle-scan.csv")
         self.set_field(path, 10, "angle_deg", "1.0")
-        self.assert_rejected(outdir, "C-O000-mid-scan.csv: line 10", "increasing order")
+        self.assert_rejected(outdir, "C-O000-middle-scan.csv: line 10", "increasing order")
 
     def test_samples_infinite(self):
         outdir = self.copy()
-        path = os.path.join(outdir, "samples", "C-O000-mid-touch.csv")
+        path = os.path.join(outdir, "samples", "C-O000-middle-touch.csv")
         self.set_field(path, 4, "roundness_um", "inf")
-        self.assert_rejected(outdir, os.path.join("samples", "C-O000-mid-touch.csv"),
+        self.assert_rejected(outdir, os.path.join("samples", "C-O000-middle-touch.csv"),
                              "line 4", "not finite")
 
     def test_command_line_error_exits_2(self):
@@ -423,6 +702,10 @@ class SelectionRules(unittest.TestCase):
         make_report_fixture.write_fixture(cls.outdir, seed=8, trials=20,
                                           locations=("L1", "Centre", "L2"),
                                           heights=("top", "middle"))
+        # The demo's plan: C at 0° twice (C-O000 of the location series, C-R000 of the
+        # orientation series).
+        cls.demo = os.path.join(cls.tmp, "demo")
+        make_report_fixture.write_fixture(cls.demo, seed=9, trials=20)
 
     @classmethod
     def tearDownClass(cls):
@@ -441,19 +724,19 @@ class SelectionRules(unittest.TestCase):
         run = self.load()
         ids = {m.id for m in run.measurements}
         first, second, note = self.report.choose_location_pair(run, ids)
-        self.assertEqual((first.id, second.id), ("Centre-O000-mid-scan", "L1-O000-mid-scan"))
+        self.assertEqual((first.id, second.id), ("Centre-O000-middle-scan", "L1-O000-middle-scan"))
         self.assertNotIn("stands in", note)
 
     def test_location_pair_falls_back_when_the_centre_has_no_profiles(self):
         run = self.load()
         ids = {m.id for m in run.measurements if m.location != "Centre"}
         first, second, note = self.report.choose_location_pair(run, ids)
-        self.assertEqual((first.id, second.id), ("L1-O000-mid-scan", "L2-O000-mid-scan"))
+        self.assertEqual((first.id, second.id), ("L1-O000-middle-scan", "L2-O000-middle-scan"))
         self.assertIn("The centre 'Centre' has no residual profile", note)
 
     def test_location_pair_needs_matching_profiles(self):
         run = self.load()
-        ids = {"Centre-O000-mid-scan", "L1-O090-mid-scan"}
+        ids = {"Centre-O000-middle-scan", "L1-O090-middle-scan"}
         first, second, note = self.report.choose_location_pair(run, ids)
         self.assertIsNone(first)
         self.assertIn("no two locations", note)
@@ -462,14 +745,40 @@ class SelectionRules(unittest.TestCase):
         run = self.load()
         chosen, note = self.report.choose_orientation_set(run, {m.id for m in run.measurements})
         self.assertEqual([m.id for m in chosen],
-                         [f"Centre-O{o:03d}-mid-scan" for o in (0, 90, 180, 270)])
+                         [f"Centre-O{o:03d}-middle-scan" for o in (0, 90, 180, 270)])
         self.assertIn("at the centre", note)
 
     def test_histograms_one_per_mode_at_the_centre(self):
         run = self.load()
         chosen = self.report.choose_histograms(run, {m.id for m in run.measurements})
         self.assertEqual([m.id for m in chosen],
-                         ["Centre-O000-mid-scan", "Centre-O000-mid-touch"])
+                         ["Centre-O000-middle-scan", "Centre-O000-middle-touch"])
+
+    def test_repeated_setup_follows_the_first_as_its_own_block(self):
+        run = self.report.load_run(self.demo)
+        centre = [m.id for m in run.measurements if m.location == "C"]
+        prefixes = list(dict.fromkeys(i[:6] for i in centre))
+        self.assertEqual(prefixes, ["C-O000", "C-R000", "C-R090", "C-R180", "C-R270"])
+        repeats = {m.id[:6]: m.repeat for m in run.measurements if m.location == "C"}
+        self.assertEqual(repeats["C-O000"], 0)
+        self.assertEqual(repeats["C-R000"], 1)
+        self.assertEqual(len(run.measurements), 66)
+
+    def test_orientation_set_takes_the_orientation_series_at_a_repeated_orientation(self):
+        run = self.report.load_run(self.demo)
+        chosen, note = self.report.choose_orientation_set(run,
+                                                          {m.id for m in run.measurements})
+        self.assertEqual([m.id for m in chosen],
+                         [f"C-R{o:03d}-middle-scan" for o in (0, 90, 180, 270)])
+        self.assertIn("at the centre", note)
+
+    def test_location_pair_and_histograms_in_the_demo_plan(self):
+        run = self.report.load_run(self.demo)
+        ids = {m.id for m in run.measurements}
+        first, second, _ = self.report.choose_location_pair(run, ids)
+        self.assertEqual((first.id, second.id), ("C-O000-middle-scan", "L1-O000-middle-scan"))
+        self.assertEqual([m.id for m in self.report.choose_histograms(run, ids)],
+                         ["C-O000-middle-scan", "C-O000-middle-touch"])
 
 
 if __name__ == "__main__":

@@ -9,6 +9,7 @@
 
 #include "vcmm/uncertainty/bias.h"
 #include "vcmm/uncertainty/monte_carlo.h"
+#include "vcmm/uncertainty/random_stream.h"
 
 namespace {
 
@@ -158,6 +159,85 @@ TEST(CorrectBias, BadInput) {
   s.probabilistically_symmetric = {1.3, 1.2, 0.95};
   expect_invalid([&] { correct_bias(1.0, s, false); }, {"low <= high"});
   expect_invalid([&] { correct_bias(-0.5, ok, true); }, {"non-negative", "estimate >= 0", "-0.5"});
+}
+
+}  // namespace
+
+// ---- correct_bias_at_surrogate and standard_normal_quantile -------------------------------
+
+namespace {
+
+TEST(StandardNormalQuantile, MatchesTheCdfToRounding) {
+  for (double p : {1e-300, 1e-12, 0.001, 0.02425, 0.025, 0.3, 0.5, 0.8, 0.975, 0.999, 1 - 1e-12}) {
+    const double x = standard_normal_quantile(p);
+    // Φ(x) = p to a few ulp of p (relative), or of 1 − p in the upper tail.
+    const double tail = p < 0.5 ? normal_cdf(x) : 1.0 - normal_cdf(x);
+    const double want = p < 0.5 ? p : 1.0 - p;
+    EXPECT_NEAR(tail / want, 1.0, 1e-9) << "p = " << p;
+  }
+  EXPECT_NEAR(standard_normal_quantile(0.975), 1.959963984540054, 1e-14);
+  EXPECT_EQ(standard_normal_quantile(0.5), 0.0);
+  expect_invalid([] { standard_normal_quantile(0.0); }, {"standard_normal_quantile", "(0, 1)"});
+  expect_invalid([] { standard_normal_quantile(1.0); }, {"(0, 1)"});
+  expect_invalid([] { standard_normal_quantile(NAN); }, {"(0, 1)"});
+}
+
+TEST(CorrectBiasAtSurrogate, ArithmeticByHand) {
+  // y = 1.0, f(ŝ) = 0.2, ȳ* = 0.9 (b = 0.7), s(y*) = 0.3, s(z*) = 0.4, M = 10 000,
+  // interval of y* [0.4, 1.5]: corrected 0.3, u_c = √(0.09 + 0.16 + 0.09/1e4),
+  // interval [0.3 − √(0.6² + (1.96·0.4)²), 0.3 + √(0.5² + (1.96·0.4)²)], low clamped at 0.
+  const BiasCorrection c = correct_bias_at_surrogate(1.0, 0.2, summary(0.9, 0.3, 0.4, 1.5),
+                                                     summary(0.25, 0.4, 0.0, 1.0), true);
+  const double kp = standard_normal_quantile(0.975);
+  EXPECT_TRUE(c.applied);
+  EXPECT_FALSE(c.refused);
+  EXPECT_FALSE(c.clamped);
+  EXPECT_DOUBLE_EQ(c.bias, 0.7);
+  EXPECT_DOUBLE_EQ(c.corrected, 0.3);
+  EXPECT_DOUBLE_EQ(c.bias_uncertainty, 0.4);
+  EXPECT_DOUBLE_EQ(c.bias_standard_error, 0.003);
+  EXPECT_DOUBLE_EQ(c.standard_uncertainty, std::sqrt(0.09 + 0.16 + 0.09e-4));
+  EXPECT_EQ(c.interval.low, 0.0);  // 0.3 − 0.99 < 0: clamped
+  EXPECT_DOUBLE_EQ(c.interval.high, 0.3 + std::hypot(0.5, kp * 0.4));
+  EXPECT_NE(c.note.find("surrogate"), std::string::npos) << c.note;
+  EXPECT_NE(c.note.find("clamped at 0"), std::string::npos) << c.note;
+}
+
+TEST(CorrectBiasAtSurrogate, NegativeCorrectedValueIsClampedAndSaid) {
+  const BiasCorrection c = correct_bias_at_surrogate(0.5, 0.1, summary(1.0, 0.2, 0.7, 1.4),
+                                                     summary(0.1, 0.1, 0.0, 0.3), true);
+  EXPECT_TRUE(c.clamped);
+  EXPECT_EQ(c.corrected, 0.0);
+  EXPECT_NE(c.note.find("reported as 0"), std::string::npos) << c.note;
+  // A signed quantity is not clamped.
+  const BiasCorrection d = correct_bias_at_surrogate(0.5, 0.1, summary(1.0, 0.2, 0.7, 1.4),
+                                                     summary(0.1, 0.1, 0.0, 0.3), false);
+  EXPECT_FALSE(d.clamped);
+  EXPECT_DOUBLE_EQ(d.corrected, -0.4);
+}
+
+TEST(CorrectBiasAtSurrogate, RejectsBadInputNamingIt) {
+  const auto s = summary(1.0, 0.2, 0.7, 1.4);
+  expect_invalid([&] { correct_bias_at_surrogate(NAN, 0.1, s, s, true); }, {"estimate"});
+  expect_invalid([&] { correct_bias_at_surrogate(1.0, INFINITY, s, s, true); },
+                 {"surrogate_value"});
+  expect_invalid([&] { correct_bias_at_surrogate(1.0, -0.1, s, s, true); }, {"non-negative"});
+  expect_invalid([&] { correct_bias_at_surrogate(1.0, 0.1, summary(1, 0.2, 2, 1), s, true); },
+                 {"low <= high"});
+  expect_invalid([&] { correct_bias_at_surrogate(1.0, 0.1, summary(1, -0.2, 0, 1), s, true); },
+                 {">= 0"});
+  expect_invalid([&] { correct_bias_at_surrogate(1.0, 0.1, s, summary(1, 0.2, 0, 1, 0), true); },
+                 {"count"});
+}
+
+TEST(DerivedSeed, DistinctForPurposesAndSeedsAndFixed) {
+  EXPECT_NE(derived_seed(1, 1), derived_seed(1, 2));
+  EXPECT_NE(derived_seed(1, 1), derived_seed(2, 1));
+  EXPECT_NE(derived_seed(0, 0), 0u);
+  EXPECT_EQ(derived_seed(1, 1), derived_seed(1, 1));
+  // Pinned (the value of the formula in random_stream.h, computed independently in Python) so
+  // that a change of the mixing, which would change every shrinkage result, shows.
+  EXPECT_EQ(derived_seed(1, 1), 0x45c35442d09f4cd3ull);
 }
 
 }  // namespace

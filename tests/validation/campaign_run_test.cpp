@@ -79,6 +79,7 @@ TEST_F(CampaignRun, TheDemoPlanHas66MeasurementsOverAllFactors) {
 TEST_F(CampaignRun, WritesEveryTableAndScoresEveryMeasurement) {
   CampaignRunOptions o;
   o.truth = truth_;
+  o.denoised_treatment = true;
   const CampaignOutcome out = run_campaign(campaign_, root_ / "out", o);
   ASSERT_FALSE(out.cancelled);
   ASSERT_EQ(out.measurements.size(), 66u);
@@ -92,6 +93,8 @@ TEST_F(CampaignRun, WritesEveryTableAndScoresEveryMeasurement) {
       EXPECT_TRUE(o2->has_reference);
       EXPECT_TRUE(std::isfinite(o2->en)) << m.id;
       EXPECT_TRUE(std::isfinite(o2->en_denoised)) << m.id;
+      EXPECT_TRUE(std::isfinite(o2->en_paper)) << m.id;
+      EXPECT_TRUE(std::isfinite(o2->en_corrected)) << m.id;
       EXPECT_GT(o2->u_mm, 0.0);
       // E_n = (ref − y) / (2 √(u_ref² + u²)) by hand.
       EXPECT_NEAR(o2->en,
@@ -102,15 +105,23 @@ TEST_F(CampaignRun, WritesEveryTableAndScoresEveryMeasurement) {
     }
     // The reference roundness sees the true form (filtered) within the meter's noise.
     EXPECT_NEAR(m.roundness.reference_mm, m.roundness.true_mm, 0.03e-3) << m.id;
+    // The default treatment: the diameter keeps the study's correction; the roundness is the
+    // shrinkage treatment, whose u includes the bias estimate's own uncertainty.
+    EXPECT_EQ(m.diameter.treatment, "paper");
+    EXPECT_EQ(m.diameter.corrected_mm, m.diameter.corrected_paper_mm);
+    EXPECT_EQ(m.roundness.treatment, "shrinkage");
+    EXPECT_GT(m.roundness.bias_uncertainty_mm, 0.0) << m.id;
+    EXPECT_GE(m.roundness.u_corrected_mm, m.roundness.bias_uncertainty_mm) << m.id;
+    EXPECT_GE(m.roundness.corrected_mm, 0.0) << m.id;
   }
   // One line per measurement and measurand, plus the header.
   const std::string csv = slurp(root_ / "out" / "results.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 66);
-  // "all" rows exist for all four treatments of both measurands.
+  // "all" rows exist for all five treatments of both measurands.
   std::size_t all_rows = 0;
   for (const auto& r : out.summary) all_rows += r.factor == "all" ? 1 : 0;
-  EXPECT_EQ(all_rows, 8u);
-  EXPECT_EQ(out.treatments.size(), 8u);
+  EXPECT_EQ(all_rows, 10u);
+  EXPECT_EQ(out.treatments.size(), 10u);
 }
 
 TEST_F(CampaignRun, AnInterruptedRunResumesToTheSameTable) {

@@ -201,6 +201,8 @@ TEST_F(CampaignTest, WriterRoundTripsExactly) {
   built.evaluation.reference_circle = ReferenceCircle::least_squares;
   built.evaluation.seed = 0xDEADBEEFCAFEF00Dull;
   built.evaluation.trials = 2000;
+  built.evaluation.bias_treatment = RoundnessBiasTreatment::paper;
+  built.evaluation.kinematics_corrected = false;
   CampaignMeasurement m;
   m.id = "C-O045-bottom-scan";
   m.points = "measurements/L1-O000-mid-scan.csv";
@@ -295,10 +297,20 @@ TEST_F(CampaignTest, UnknownKeysAreErrorsAnywhere) {
             "unknown key \"trails\" (allowed here: schema, schema_version, description, model, "
             "evaluation, measurements)");
   doc = example();
+  {
+    nlohmann::json bad = doc;
+    bad["evaluation"]["bias_treatment"] = "denoise";
+    EXPECT_EQ(rule_of(bad), "evaluation.bias_treatment: must be \"shrinkage\" or \"paper\"; got \"denoise\"");
+    bad = doc;
+    bad["evaluation"]["kinematic_errors"] = true;
+    EXPECT_EQ(rule_of(bad),
+              "evaluation.kinematic_errors: must be \"corrected\" or \"uncertainty_only\"; got true");
+  }
   doc["evaluation"]["trails"] = 10;
   EXPECT_EQ(rule_of(doc),
             "evaluation: unknown key \"trails\" (allowed here: reference_circle, "
-            "filter_cutoff_upr, trials, seed, coverage_probability, k)");
+            "filter_cutoff_upr, trials, seed, coverage_probability, k, bias_treatment, "
+            "kinematic_errors)");
   doc = example();
   doc["measurements"][1]["setup"]["colour"] = "red";
   EXPECT_EQ(rule_of(doc),

@@ -475,4 +475,14 @@ void RandomStream::fill_uniform(std::span<double> out) {
   }
 }
 
+std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t purpose) {
+  const auto mix = [](std::uint64_t z) {
+    z += 0x9E3779B97F4A7C15ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  };
+  return mix(mix(seed) ^ mix(purpose + 1));
+}
+
 }  // namespace vcmm::uncertainty

@@ -366,7 +366,8 @@ class Reader {
     object(v, path, "of evaluation settings");
     only_keys(v,
               {{"reference_circle", ""}, {"filter_cutoff_upr", "the filter cut-off"},
-               {"trials", ""}, {"seed", ""}, {"coverage_probability", ""}, {"k", ""}},
+               {"trials", ""}, {"seed", ""}, {"coverage_probability", ""}, {"k", ""},
+               {"bias_treatment", ""}, {"kinematic_errors", ""}},
               path);
     EvaluationSettings e;
     if (const json* rc = find(v, "reference_circle")) {
@@ -418,6 +419,19 @@ class Reader {
       e.coverage_probability = prob;
     }
     if (const json* k = find(v, "k")) e.k = positive(*k, join(path, "k"));
+    if (const json* b = find(v, "bias_treatment")) {
+      const auto t = b->is_string() ? roundness_bias_treatment_from_string(b->get<std::string>())
+                                    : std::nullopt;
+      if (!t) fail(join(path, "bias_treatment"), "must be \"shrinkage\" or \"paper\"", *b);
+      e.bias_treatment = *t;
+    }
+    if (const json* ke = find(v, "kinematic_errors")) {
+      const std::string text = ke->is_string() ? ke->get<std::string>() : std::string();
+      if (text != "corrected" && text != "uncertainty_only")
+        fail(join(path, "kinematic_errors"), "must be \"corrected\" or \"uncertainty_only\"",
+             *ke);
+      e.kinematics_corrected = text == "corrected";
+    }
     return e;
   }
 
@@ -703,6 +717,8 @@ std::string campaign_json(const Campaign& c) {
   e["seed"] = c.evaluation.seed;
   e["coverage_probability"] = c.evaluation.coverage_probability;
   e["k"] = c.evaluation.k;
+  e["bias_treatment"] = std::string(to_string(c.evaluation.bias_treatment));
+  e["kinematic_errors"] = c.evaluation.kinematics_corrected ? "corrected" : "uncertainty_only";
   ordered_json list = ordered_json::array();
   for (const CampaignMeasurement& m : c.measurements) {
     ordered_json mj;

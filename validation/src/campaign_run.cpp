@@ -37,7 +37,7 @@ constexpr double kSetupToleranceMm = 1e-9;
 constexpr double kSetupToleranceDeg = 1e-9;
 constexpr double kSetupToleranceC = 1e-9;
 /// Version of the per-measurement file; part of the fingerprint (a format change recomputes).
-constexpr const char* kOutcomeFormat = "vcmm.campaign_measurement.v1";
+constexpr const char* kOutcomeFormat = "vcmm.campaign_measurement.v2";
 
 std::string read_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -122,7 +122,8 @@ uncertainty::MeasurandSummary shifted(const uncertainty::MeasurandSummary& s, do
 
 void score(MeasurandOutcome& o, double k) {
   if (!o.has_reference) {
-    o.en = o.en_corrected = o.en_denoised = o.en_inflated = o.zeta = o.zeta_corrected = kNaN;
+    o.en = o.en_corrected = o.en_paper = o.en_denoised = o.en_inflated = o.zeta =
+        o.zeta_corrected = kNaN;
     return;
   }
   const double xr = o.reference_mm, ur = o.u_reference_mm;
@@ -130,26 +131,36 @@ void score(MeasurandOutcome& o, double k) {
   o.zeta = zeta_score(xr, ur, o.estimate_mm, o.u_mm);
   o.en_corrected = en_score(xr, ur, o.corrected_mm, o.u_corrected_mm, k);
   o.zeta_corrected = zeta_score(xr, ur, o.corrected_mm, o.u_corrected_mm);
+  o.en_paper = en_score(xr, ur, o.corrected_paper_mm, o.u_corrected_paper_mm, k);
   o.en_denoised = std::isnan(o.corrected_denoised_mm)
                       ? kNaN
                       : en_score(xr, ur, o.corrected_denoised_mm, o.u_denoised_mm, k);
-  o.en_inflated = en_score_expanded(xr, k * ur, o.estimate_mm, k * o.u_mm + std::abs(o.bias_mm));
+  o.en_inflated =
+      en_score_expanded(xr, k * ur, o.estimate_mm, k * o.u_mm + std::abs(o.bias_paper_mm));
 }
 
-void fill_from_correction(MeasurandOutcome& o, double estimate,
-                          const uncertainty::MeasurandSummary& s,
-                          const uncertainty::BiasCorrection& c) {
+/// The outcome of one measurand from the uncertainty evaluation: the study's run on x̂, the
+/// campaign's treatment (`chosen`) and the study's (`paper`).
+void fill_outcome(MeasurandOutcome& o, double estimate, const uncertainty::MeasurandSummary& s,
+                  const uncertainty::BiasCorrection& chosen, std::string_view treatment,
+                  const uncertainty::BiasCorrection& paper) {
   o.estimate_mm = estimate;
   o.u_mm = s.standard_uncertainty;
   o.mc_mean_mm = s.mean;
-  o.bias_mm = c.bias;
-  o.bias_standard_error_mm = c.bias_standard_error;
   o.interval_low_mm = s.probabilistically_symmetric.low;
   o.interval_high_mm = s.probabilistically_symmetric.high;
-  o.corrected_mm = c.corrected;
-  o.u_corrected_mm = c.standard_uncertainty;
-  o.correction_applied = c.applied;
-  o.note = c.note;
+  o.treatment = std::string(treatment);
+  o.bias_mm = chosen.bias;
+  o.bias_standard_error_mm = chosen.bias_standard_error;
+  o.bias_uncertainty_mm = chosen.bias_uncertainty;
+  o.corrected_mm = chosen.corrected;
+  o.u_corrected_mm = chosen.standard_uncertainty;
+  o.correction_applied = chosen.applied;
+  o.note = chosen.note;
+  o.bias_paper_mm = paper.bias;
+  o.corrected_paper_mm = paper.corrected;
+  o.u_corrected_paper_mm = paper.standard_uncertainty;
+  o.paper_applied = paper.applied;
 }
 
 // ---- per-measurement JSON (the resume file) --------------------------------------------------
@@ -165,19 +176,26 @@ json measurand_to_json(const MeasurandOutcome& o) {
           {"estimate_mm", num(o.estimate_mm)},
           {"u_mm", num(o.u_mm)},
           {"mc_mean_mm", num(o.mc_mean_mm)},
-          {"bias_mm", num(o.bias_mm)},
-          {"bias_standard_error_mm", num(o.bias_standard_error_mm)},
           {"interval_low_mm", num(o.interval_low_mm)},
           {"interval_high_mm", num(o.interval_high_mm)},
+          {"treatment", o.treatment},
+          {"bias_mm", num(o.bias_mm)},
+          {"bias_standard_error_mm", num(o.bias_standard_error_mm)},
+          {"bias_uncertainty_mm", num(o.bias_uncertainty_mm)},
           {"corrected_mm", num(o.corrected_mm)},
           {"u_corrected_mm", num(o.u_corrected_mm)},
           {"correction_applied", o.correction_applied},
           {"note", o.note},
+          {"bias_paper_mm", num(o.bias_paper_mm)},
+          {"corrected_paper_mm", num(o.corrected_paper_mm)},
+          {"u_corrected_paper_mm", num(o.u_corrected_paper_mm)},
+          {"paper_applied", o.paper_applied},
           {"corrected_denoised_mm", num(o.corrected_denoised_mm)},
           {"u_denoised_mm", num(o.u_denoised_mm)},
           {"denoised_applied", o.denoised_applied},
           {"En", num(o.en)},
           {"En_corrected", num(o.en_corrected)},
+          {"En_paper", num(o.en_paper)},
           {"En_denoised", num(o.en_denoised)},
           {"En_inflated", num(o.en_inflated)},
           {"zeta", num(o.zeta)},
@@ -194,19 +212,26 @@ MeasurandOutcome measurand_from_json(const json& j) {
   o.estimate_mm = to_num(j.at("estimate_mm"));
   o.u_mm = to_num(j.at("u_mm"));
   o.mc_mean_mm = to_num(j.at("mc_mean_mm"));
-  o.bias_mm = to_num(j.at("bias_mm"));
-  o.bias_standard_error_mm = to_num(j.at("bias_standard_error_mm"));
   o.interval_low_mm = to_num(j.at("interval_low_mm"));
   o.interval_high_mm = to_num(j.at("interval_high_mm"));
+  o.treatment = j.at("treatment").get<std::string>();
+  o.bias_mm = to_num(j.at("bias_mm"));
+  o.bias_standard_error_mm = to_num(j.at("bias_standard_error_mm"));
+  o.bias_uncertainty_mm = to_num(j.at("bias_uncertainty_mm"));
   o.corrected_mm = to_num(j.at("corrected_mm"));
   o.u_corrected_mm = to_num(j.at("u_corrected_mm"));
   o.correction_applied = j.at("correction_applied").get<bool>();
   o.note = j.at("note").get<std::string>();
+  o.bias_paper_mm = to_num(j.at("bias_paper_mm"));
+  o.corrected_paper_mm = to_num(j.at("corrected_paper_mm"));
+  o.u_corrected_paper_mm = to_num(j.at("u_corrected_paper_mm"));
+  o.paper_applied = j.at("paper_applied").get<bool>();
   o.corrected_denoised_mm = to_num(j.at("corrected_denoised_mm"));
   o.u_denoised_mm = to_num(j.at("u_denoised_mm"));
   o.denoised_applied = j.at("denoised_applied").get<bool>();
   o.en = to_num(j.at("En"));
   o.en_corrected = to_num(j.at("En_corrected"));
+  o.en_paper = to_num(j.at("En_paper"));
   o.en_denoised = to_num(j.at("En_denoised"));
   o.en_inflated = to_num(j.at("En_inflated"));
   o.zeta = to_num(j.at("zeta"));
@@ -287,26 +312,29 @@ std::string cell(double v) { return std::isfinite(v) ? shortest(v) : std::string
 std::string results_csv(const std::vector<MeasurementOutcome>& outcomes) {
   std::string out =
       "id,location,orientation_deg,height,mode,measurand,unit,reference,u_reference,estimate,u,"
-      "mc_mean,bias,corrected,u_corrected,correction_applied,interval_low,interval_high,"
-      "En,En_corrected,zeta,zeta_corrected,corrected_denoised,En_denoised,En_inflated,"
+      "mc_mean,interval_low,interval_high,treatment,bias,u_bias,corrected,u_corrected,"
+      "correction_applied,bias_paper,corrected_paper,u_corrected_paper,paper_applied,"
+      "En,En_corrected,En_paper,zeta,zeta_corrected,corrected_denoised,En_denoised,En_inflated,"
       "true_value\n";
   for (const auto& m : outcomes) {
     for (int which = 0; which < 2; ++which) {
       const MeasurandOutcome& o = which == 0 ? m.diameter : m.roundness;
       const double s = which == 0 ? 1.0 : kUmPerMm;
       const double nan = kNaN;
+      const auto v = [&](double x) { return cell(x * s) + ","; };
+      const auto e = [&](double x) { return cell(x) + ","; };
       out += m.id + "," + m.location + "," + shortest(m.orientation_deg) + "," +
              std::string(to_string(m.height)) + "," + std::string(em::to_string(m.mode)) + "," +
              (which == 0 ? "diameter,mm," : "roundness,um,") +
-             cell(o.has_reference ? o.reference_mm * s : nan) + "," +
-             cell(o.has_reference ? o.u_reference_mm * s : nan) + "," + cell(o.estimate_mm * s) +
-             "," + cell(o.u_mm * s) + "," + cell(o.mc_mean_mm * s) + "," + cell(o.bias_mm * s) +
-             "," + cell(o.corrected_mm * s) + "," + cell(o.u_corrected_mm * s) + "," +
-             (o.correction_applied ? "true" : "false") + "," + cell(o.interval_low_mm * s) + "," +
-             cell(o.interval_high_mm * s) + "," + cell(o.en) + "," + cell(o.en_corrected) + "," +
-             cell(o.zeta) + "," + cell(o.zeta_corrected) + "," +
-             cell(o.corrected_denoised_mm * s) + "," + cell(o.en_denoised) + "," +
-             cell(o.en_inflated) + "," + cell(o.true_mm * s) + "\n";
+             v(o.has_reference ? o.reference_mm : nan) +
+             v(o.has_reference ? o.u_reference_mm : nan) + v(o.estimate_mm) + v(o.u_mm) +
+             v(o.mc_mean_mm) + v(o.interval_low_mm) + v(o.interval_high_mm) + o.treatment + "," +
+             v(o.bias_mm) + v(o.bias_uncertainty_mm) + v(o.corrected_mm) + v(o.u_corrected_mm) +
+             (o.correction_applied ? "true," : "false,") + v(o.bias_paper_mm) +
+             v(o.corrected_paper_mm) + v(o.u_corrected_paper_mm) +
+             (o.paper_applied ? "true," : "false,") + e(o.en) + e(o.en_corrected) +
+             e(o.en_paper) + e(o.zeta) + e(o.zeta_corrected) + v(o.corrected_denoised_mm) +
+             e(o.en_denoised) + e(o.en_inflated) + cell(o.true_mm * s) + "\n";
     }
   }
   return out;
@@ -335,21 +363,23 @@ json summary_json(const std::vector<SummaryRow>& rows) {
   return a;
 }
 
-constexpr std::array<const char*, 4> kTreatments = {"uncorrected", "corrected", "denoised",
-                                                    "inflated"};
+constexpr std::array<const char*, 5> kTreatments = {"uncorrected", "corrected", "paper",
+                                                    "denoised", "inflated"};
 
 double en_of(const MeasurandOutcome& o, std::size_t treatment) {
   switch (treatment) {
     case 0: return o.en;
     case 1: return o.en_corrected;
-    case 2: return o.en_denoised;
+    case 2: return o.en_paper;
+    case 3: return o.en_denoised;
     default: return o.en_inflated;
   }
 }
 double reported_of(const MeasurandOutcome& o, std::size_t treatment) {
   switch (treatment) {
     case 1: return o.corrected_mm;
-    case 2: return o.corrected_denoised_mm;
+    case 2: return o.corrected_paper_mm;
+    case 3: return o.corrected_denoised_mm;
     default: return o.estimate_mm;  // uncorrected and inflated report y
   }
 }
@@ -472,7 +502,10 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
   ensure_dir(out_dir / "residuals");
 
   const std::string model_bytes = read_bytes(campaign.model_path);
-  const em::DigitalModel model = em::parse_digital_model(model_bytes, campaign.model_path.string());
+  const em::DigitalModel parsed = em::parse_digital_model(model_bytes, campaign.model_path.string());
+  const em::DigitalModel model = campaign.evaluation.kinematics_corrected
+                                     ? parsed
+                                     : em::with_kinematics_uncorrected(parsed);
   const EvaluationSettings& ev = campaign.evaluation;
   RingEvaluationOptions evaluation;
   evaluation.reference = ev.reference_circle;
@@ -542,15 +575,16 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     uo.monte_carlo.coverage_probability = ev.coverage_probability;
     uo.monte_carlo.progress = options.progress;
     uo.monte_carlo.cancel = options.cancel;
+    uo.roundness_bias = ev.bias_treatment;
     const RingUncertaintyResult a = evaluate_ring_uncertainty(model, measured, uo);
     if (a.monte_carlo.status == uncertainty::RunStatus::cancelled) {
       outcome.cancelled = true;
       break;
     }
-    fill_from_correction(m.diameter, a.estimate.diameter_mm, a.monte_carlo.summaries[diameter],
-                         a.diameter);
-    fill_from_correction(m.roundness, a.estimate.roundness_mm,
-                         a.monte_carlo.summaries[roundness], a.roundness);
+    fill_outcome(m.diameter, a.estimate.diameter_mm, a.monte_carlo.summaries[diameter],
+                 a.diameter, "paper", a.diameter);
+    fill_outcome(m.roundness, a.estimate.roundness_mm, a.monte_carlo.summaries[roundness],
+                 a.roundness, to_string(a.roundness_treatment), a.roundness_paper);
 
     // Treatment (b): the same virtual experiment on the denoised virtual truth.
     m.diameter.corrected_denoised_mm = m.diameter.u_denoised_mm = kNaN;
@@ -558,6 +592,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     if (run_denoised) {
       const em::Measurement den = denoised_ring(a.best_estimate, *ev.filter_cutoff_upr);
       uo.monte_carlo.seed = measurement_seed(ev.seed, entry.id + "#denoised");
+      uo.roundness_bias = RoundnessBiasTreatment::paper;
       const RingUncertaintyResult b = evaluate_ring_uncertainty_on_surface(model, den, uo);
       if (b.monte_carlo.status == uncertainty::RunStatus::cancelled) {
         outcome.cancelled = true;
@@ -654,6 +689,8 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                {"reference_circle", std::string(to_string(ev.reference_circle))},
                {"filter_cutoff_upr", ev.filter_cutoff_upr ? json(*ev.filter_cutoff_upr) : json()},
                {"denoised_treatment", run_denoised},
+               {"bias_treatment", std::string(to_string(ev.bias_treatment))},
+               {"kinematic_errors", ev.kinematics_corrected ? "corrected" : "uncertainty_only"},
                {"wall_seconds_this_run", outcome.wall_seconds}};
   for (const auto& [k, v] : options.provenance) info[k] = v;
   errormodel::write_file_atomically((out_dir / "run_info.json").string(), info.dump(1) + "\n");

@@ -70,12 +70,19 @@ double demo_height_mm(const std::string& height) {
 }
 
 DemoWorld make_demo_world(const em::DigitalModel& model, const DemoWorldOptions& options) {
+  if (!(std::isfinite(options.form_scale) && options.form_scale >= 0.0))
+    throw std::invalid_argument("make_demo_world: form_scale must be a finite number >= 0; got " +
+                                internal::shortest(options.form_scale));
+  if (options.scanning_points < 8 || options.touch_trigger_points < 8 ||
+      options.roundness_meter_points < 8)
+    throw std::invalid_argument("make_demo_world: every point count must be at least 8");
   DemoWorld world;
   world.options = options;
 
   // The ring: the seed study's form at the middle; other heights vary it.
   world.ring_middle.diameter_mm = kRingDiameterMm;
   world.ring_middle.form = em::seed_study_ring_form();
+  for (auto& harmonic : world.ring_middle.form) harmonic.amplitude_mm *= options.form_scale;
   {
     em::SeededRandomSource rng(purpose_seed(options.seed, 1));
     for (const char* h : kHeights) {
@@ -111,12 +118,13 @@ DemoWorld make_demo_world(const em::DigitalModel& model, const DemoWorldOptions&
     std::size_t location;
     double orientation_deg;
     std::size_t height;
+    bool orientation_series;
   };
   std::vector<Planned> plan;
   for (std::size_t l = 0; l < locations().size(); ++l)
-    for (std::size_t h = 0; h < kHeights.size(); ++h) plan.push_back({l, 0.0, h});
-  for (std::size_t l : {std::size_t{0}, std::size_t{1}, std::size_t{2}, std::size_t{4}})
-    for (double o : {90.0, 180.0, 270.0}) plan.push_back({l, o, 1});
+    for (std::size_t h = 0; h < kHeights.size(); ++h) plan.push_back({l, 0.0, h, false});
+  for (double o : {0.0, 90.0, 180.0, 270.0})
+    for (std::size_t h = 0; h < kHeights.size(); ++h) plan.push_back({0, o, h, true});
 
   em::SeededRandomSource temperature_rng(purpose_seed(options.seed, 3));
   em::SeededRandomSource measurement_rng(purpose_seed(options.seed, 4));
@@ -152,7 +160,7 @@ DemoWorld make_demo_world(const em::DigitalModel& model, const DemoWorldOptions&
       d.height = kHeights[p.height];
       d.mode = mode;
       char id[64];
-      std::snprintf(id, sizeof id, "%s-O%03d-%s-%s", loc.name,
+      std::snprintf(id, sizeof id, "%s-%s%03d-%s-%s", loc.name, p.orientation_series ? "R" : "O",
                     static_cast<int>(p.orientation_deg), d.height.c_str(),
                     mode == em::ProbingMode::scanning ? "scan" : "touch");
       d.id = id;

@@ -1,130 +1,21 @@
 // validation/src/ring_experiment.cpp — the ring-gauge virtual experiment (see the header for
 // the flow and docs/validation.md for the method).
-//
-// The adapter StreamRandomSource gives errormodel's bulk RandomSource interface the numbers of
-// the trial's own counter-based stream, so trial t's errors depend on (seed, t) only.
 #include "vcmm/validation/ring_experiment.h"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <memory>
 #include <numbers>
 #include <string>
 
-#include "vcmm/geometry/point.h"
+#include "internal/stream_random_source.h"
 #include "vcmm/geometry/gaussian_filter.h"
-#include "vcmm/geometry/least_squares.h"
-#include "vcmm/geometry/maximum_inscribed.h"
-#include "vcmm/geometry/minimum_circumscribed.h"
-#include "vcmm/geometry/minimum_zone.h"
+#include "vcmm/geometry/point.h"
 
 namespace vcmm::validation {
-namespace {
 
-/// errormodel::RandomSource over the trial's uncertainty::RandomStream.
-class StreamRandomSource final : public errormodel::RandomSource {
- public:
-  explicit StreamRandomSource(uncertainty::RandomStream& stream) : stream_(stream) {}
-  void fill_standard_normal(std::span<double> out) override { stream_.fill_standard_normal(out); }
-  void fill_uniform(std::span<double> out) override { stream_.fill_uniform(out); }
-
- private:
-  uncertainty::RandomStream& stream_;
-};
-
-void project_xy(const errormodel::Measurement& m, std::vector<geometry::Point2>& out) {
-  const Eigen::Index n = m.size();
-  out.resize(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    out[static_cast<std::size_t>(i)] = {m.points_mm(0, i), m.points_mm(1, i)};
-  }
-}
-
-struct ReferenceFit {
-  geometry::Point2 center;
-  double radius = 0.0;
-  double ront = 0.0;
-};
-
-ReferenceFit fit_reference(std::span<const geometry::Point2> pts, ReferenceCircle circle) {
-  switch (circle) {
-    case ReferenceCircle::minimum_zone: {
-      const auto mz = geometry::minimum_zone_circle(pts);
-      return {mz.center, 0.5 * (mz.inner_radius + mz.outer_radius), mz.ron.ront};
-    }
-    case ReferenceCircle::maximum_inscribed: {
-      const auto mi = geometry::maximum_inscribed_circle(pts);
-      return {mi.center, mi.radius, mi.ron.ront};
-    }
-    case ReferenceCircle::least_squares: {
-      const auto ls = geometry::least_squares_circle(pts);
-      return {ls.center, ls.radius, ls.ron.ront};
-    }
-    case ReferenceCircle::minimum_circumscribed: {
-      const auto mc = geometry::minimum_circumscribed_circle(pts);
-      return {mc.center, mc.radius, mc.ron.ront};
-    }
-  }
-  throw geometry::InvalidInput("evaluate_ring: unknown reference circle");
-}
-
-}  // namespace
-
-std::vector<geometry::Point2> ring_profile(const errormodel::Measurement& m) {
-  std::vector<geometry::Point2> out;
-  project_xy(m, out);
-  return out;
-}
-
-RingMeasurands evaluate_ring(std::span<const geometry::Point2> profile,
-                             const RingEvaluationOptions& options) {
-  RingMeasurands out;
-  const geometry::LeastSquaresCircle ls = geometry::least_squares_circle(profile);
-  out.diameter_mm = 2.0 * ls.radius;
-  if (options.filter_cutoff_upr) {
-    // The filter about the LS circle just fitted (bit for bit the filter's own fit).
-    const auto filtered =
-        geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls);
-    out.roundness_mm = fit_reference(filtered.points, options.reference).ront;
-  } else {
-    out.roundness_mm = fit_reference(profile, options.reference).ront;
-  }
-  return out;
-}
-
-RingMeasurands evaluate_ring(const errormodel::Measurement& m,
-                             const RingEvaluationOptions& options) {
-  errormodel::validate_measurement(m, "evaluate_ring");
-  return evaluate_ring(ring_profile(m), options);
-}
-
-RingProfileEvaluation evaluate_ring_profile(std::span<const geometry::Point2> profile,
-                                            const RingEvaluationOptions& options) {
-  RingProfileEvaluation out;
-  out.measurands.diameter_mm = 2.0 * geometry::least_squares_circle(profile).radius;
-  std::vector<geometry::Point2> filtered(profile.begin(), profile.end());
-  if (options.filter_cutoff_upr) {
-    filtered = geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr).points;
-  }
-  const ReferenceFit fit = fit_reference(filtered, options.reference);
-  out.measurands.roundness_mm = fit.ront;
-  out.reference_center = fit.center;
-  out.reference_radius_mm = fit.radius;
-  const std::size_t n = profile.size();
-  out.angle_rad.resize(n);
-  out.deviation_mm.resize(n);
-  out.filtered_deviation_mm.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double dx = profile[i].x - fit.center.x, dy = profile[i].y - fit.center.y;
-    double a = std::atan2(dy, dx);
-    if (a < 0.0) a += 2.0 * std::numbers::pi;
-    out.angle_rad[i] = a;
-    out.deviation_mm[i] = std::hypot(dx, dy) - fit.radius;
-    out.filtered_deviation_mm[i] =
-        std::hypot(filtered[i].x - fit.center.x, filtered[i].y - fit.center.y) - fit.radius;
-  }
-  return out;
-}
+using internal::StreamRandomSource;
 
 errormodel::Measurement denoised_ring(const errormodel::Measurement& m, double cutoff_upr) {
   errormodel::validate_measurement(m, "denoised_ring");
@@ -168,6 +59,56 @@ uncertainty::ExperimentFactory ring_experiment_factory(const errormodel::Digital
 
 namespace {
 
+/// Seed purposes of the shrinkage treatment's runs (uncertainty::derived_seed).
+constexpr std::uint64_t kPilotPurpose = 1;
+constexpr std::uint64_t kSurrogatePurpose = 2;
+
+/// Progress of a later run reported as part of the whole evaluation: (offset + done, total).
+std::function<void(std::uint64_t, std::uint64_t)> offset_progress(
+    const std::function<void(std::uint64_t, std::uint64_t)>& progress, std::uint64_t offset,
+    std::uint64_t total) {
+  if (!progress) return {};
+  return [progress, offset, total](std::uint64_t done, std::uint64_t planned) {
+    progress(offset + done, std::max(total, offset + planned));
+  };
+}
+
+/// The shrinkage treatment (form_bias.h) after the first run: pilot, surrogate, second run.
+void run_shrinkage(const errormodel::DigitalModel& model, const RingUncertaintyOptions& options,
+                   RingUncertaintyResult& result) {
+  const std::uint64_t m1 = result.monte_carlo.trials;
+  const std::uint64_t pilot = options.shrinkage.pilot_trials;
+  const std::uint64_t total = m1 + pilot + m1;
+  SurrogateRun run;
+  uncertainty::MonteCarloOptions pilot_run = options.monte_carlo;
+  pilot_run.seed = uncertainty::derived_seed(options.monte_carlo.seed, kPilotPurpose);
+  auto shrinkage = estimate_harmonic_shrinkage(model, result.best_estimate, options.evaluation,
+                                               options.stages, options.shrinkage, pilot_run);
+  const auto cancelled = [&result](const char* when) {
+    result.monte_carlo.status = uncertainty::RunStatus::cancelled;
+    result.monte_carlo.message = std::string("cancelled during the shrinkage treatment's ") + when;
+  };
+  if (!shrinkage) return cancelled("pilot run");
+  run.shrinkage = std::move(*shrinkage);
+  if (options.monte_carlo.progress) options.monte_carlo.progress(m1 + pilot, total);
+  run.surrogate = shrunk_ring(result.best_estimate, run.shrinkage, options.evaluation);
+  uncertainty::MonteCarloOptions mc = options.monte_carlo;
+  mc.trials = m1;
+  mc.seed = uncertainty::derived_seed(options.monte_carlo.seed, kSurrogatePurpose);
+  mc.progress = offset_progress(options.monte_carlo.progress, m1 + pilot, total);
+  run.monte_carlo = uncertainty::run_monte_carlo(
+      surrogate_experiment_factory(model, run.surrogate.surface, options.evaluation, options.stages,
+                                   run.shrinkage),
+      surrogate_measurand_count, mc);
+  if (run.monte_carlo.status == uncertainty::RunStatus::cancelled) return cancelled("second run");
+  result.roundness = uncertainty::correct_bias_at_surrogate(
+      result.estimate.roundness_mm, run.surrogate.measurands.roundness_mm,
+      run.monte_carlo.summaries[surrogate_roundness], run.monte_carlo.summaries[surrogate_shrunk],
+      true);
+  result.roundness_treatment = RoundnessBiasTreatment::shrinkage;
+  result.surrogate = std::move(run);
+}
+
 RingUncertaintyResult run_on_surface(const errormodel::DigitalModel& model,
                                      errormodel::Measurement surface,
                                      const RingUncertaintyOptions& options) {
@@ -176,17 +117,27 @@ RingUncertaintyResult run_on_surface(const errormodel::DigitalModel& model,
   result.estimate = evaluate_ring(result.best_estimate, options.evaluation);
   const auto factory = ring_experiment_factory(model, result.best_estimate, options.evaluation,
                                                options.stages);
+  const bool shrinkage = options.roundness_bias == RoundnessBiasTreatment::shrinkage;
+  uncertainty::MonteCarloOptions first = options.monte_carlo;
+  if (shrinkage && !options.adaptive) {
+    const std::uint64_t m = options.monte_carlo.trials;
+    first.progress = offset_progress(options.monte_carlo.progress, 0,
+                                     2 * m + options.shrinkage.pilot_trials);
+  }
   result.monte_carlo =
       options.adaptive
           ? uncertainty::run_adaptive_monte_carlo(factory, ring_measurand_count,
-                                                  *options.adaptive, options.monte_carlo)
-          : uncertainty::run_monte_carlo(factory, ring_measurand_count, options.monte_carlo);
-  if (!result.monte_carlo.summaries.empty()) {  // none below the minimum sample count
-    result.diameter = uncertainty::correct_bias(
-        result.estimate.diameter_mm, result.monte_carlo.summaries[diameter], true);
-    result.roundness = uncertainty::correct_bias(
-        result.estimate.roundness_mm, result.monte_carlo.summaries[roundness], true);
-  }
+                                                  *options.adaptive, first)
+          : uncertainty::run_monte_carlo(factory, ring_measurand_count, first);
+  result.roundness_treatment = RoundnessBiasTreatment::paper;
+  if (result.monte_carlo.summaries.empty()) return result;  // below the minimum sample count
+  result.diameter = uncertainty::correct_bias(
+      result.estimate.diameter_mm, result.monte_carlo.summaries[diameter], true);
+  result.roundness_paper = uncertainty::correct_bias(
+      result.estimate.roundness_mm, result.monte_carlo.summaries[roundness], true);
+  result.roundness = result.roundness_paper;
+  if (shrinkage && result.monte_carlo.status != uncertainty::RunStatus::cancelled)
+    run_shrinkage(model, options, result);
   return result;
 }
 
@@ -206,7 +157,9 @@ RingUncertaintyResult evaluate_ring_uncertainty_on_surface(
     const errormodel::DigitalModel& model, const errormodel::Measurement& truth_estimate,
     const RingUncertaintyOptions& options) {
   errormodel::validate_measurement(truth_estimate, "evaluate_ring_uncertainty_on_surface");
-  return run_on_surface(model, truth_estimate, options);
+  RingUncertaintyOptions o = options;
+  o.roundness_bias = RoundnessBiasTreatment::paper;  // the surface is the surrogate already
+  return run_on_surface(model, truth_estimate, o);
 }
 
 }  // namespace vcmm::validation

@@ -17,9 +17,26 @@ struct MeasurandView {
   const char* unit;
   double scale;  // mm → unit
   const uncertainty::MeasurandSummary* summary;
-  const uncertainty::BiasCorrection* correction;
+  const uncertainty::BiasCorrection* correction;  // the reported treatment's
+  const uncertainty::BiasCorrection* paper;       // the study's
+  std::string_view treatment;
   double estimate;
 };
+
+nlohmann::json correction_json(const uncertainty::BiasCorrection& c, double scale) {
+  nlohmann::json j;
+  j["bias"] = c.bias * scale;
+  j["bias_standard_error"] = c.bias_standard_error * scale;
+  j["bias_uncertainty"] = c.bias_uncertainty * scale;
+  j["corrected"] = c.corrected * scale;
+  j["corrected_standard_uncertainty"] = c.standard_uncertainty * scale;
+  j["corrected_interval"] = {{"low", c.interval.low * scale}, {"high", c.interval.high * scale}};
+  j["correction_applied"] = c.applied;
+  j["correction_refused"] = c.refused;
+  j["corrected_clamped_at_zero"] = c.clamped;
+  j["note"] = c.note;
+  return j;
+}
 
 nlohmann::json measurand_json(const MeasurandView& v) {
   const auto& s = *v.summary;
@@ -35,23 +52,17 @@ nlohmann::json measurand_json(const MeasurandView& v) {
       {"high", s.probabilistically_symmetric.high * v.scale},
       {"shortest_low", s.shortest.low * v.scale},
       {"shortest_high", s.shortest.high * v.scale}};
-  j["bias"] = c.bias * v.scale;
-  j["bias_standard_error"] = c.bias_standard_error * v.scale;
-  j["corrected"] = c.corrected * v.scale;
-  j["corrected_standard_uncertainty"] = c.standard_uncertainty * v.scale;
-  j["corrected_interval"] = {{"low", c.interval.low * v.scale},
-                             {"high", c.interval.high * v.scale}};
-  j["correction_applied"] = c.applied;
-  j["correction_refused"] = c.refused;
-  j["note"] = c.note;
+  j["bias_treatment"] = std::string(v.treatment);
+  j.update(correction_json(c, v.scale));
+  j["paper"] = correction_json(*v.paper, v.scale);
   return j;
 }
 
 std::array<MeasurandView, 2> views(const RingUncertaintyResult& r) {
   return {{{"diameter", "mm", 1.0, &r.monte_carlo.summaries.at(diameter), &r.diameter,
-            r.estimate.diameter_mm},
+            &r.diameter, "paper", r.estimate.diameter_mm},
            {"roundness", "um", kUmPerMm, &r.monte_carlo.summaries.at(roundness), &r.roundness,
-            r.estimate.roundness_mm}}};
+            &r.roundness_paper, to_string(r.roundness_treatment), r.estimate.roundness_mm}}};
 }
 
 }  // namespace
@@ -79,6 +90,23 @@ std::string ring_uncertainty_json(const RingUncertaintyResult& result,
     return j.dump(2) + "\n";
   }
   for (const MeasurandView& v : views(result)) j["measurands"][v.name] = measurand_json(v);
+  if (result.surrogate) {
+    const SurrogateRun& s = *result.surrogate;
+    const auto& y = s.monte_carlo.summaries.at(surrogate_roundness);
+    const auto& z = s.monte_carlo.summaries.at(surrogate_shrunk);
+    j["shrinkage"] = {
+        {"unit", "um"},
+        {"pilot_trials", s.shrinkage.pilot_trials},
+        {"max_order", s.shrinkage.max_order},
+        {"dominant_orders", s.shrinkage.dominant_orders},
+        {"median_error_power_um2", s.shrinkage.median_error_power_mm2 * kUmPerMm * kUmPerMm},
+        {"kept_harmonics", s.surrogate.kept_harmonics},
+        {"surrogate_roundness", s.surrogate.measurands.roundness_mm * kUmPerMm},
+        {"trials", s.monte_carlo.trials},
+        {"mean_at_surrogate", y.mean * kUmPerMm},
+        {"u_at_surrogate", y.standard_uncertainty * kUmPerMm},
+        {"u_of_surrogate_estimate", z.standard_uncertainty * kUmPerMm}};
+  }
   if (mc.correlation.size() == 4) j["correlation_diameter_roundness"] = mc.correlation[1];
   return j.dump(2) + "\n";
 }
@@ -124,21 +152,33 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
                   digits, s.probabilistically_symmetric.low * v.scale, digits,
                   s.probabilistically_symmetric.high * v.scale);
     os << line;
-    std::snprintf(line, sizeof line, "  %-28s %.*f (MC standard error %.*f)\n",
-                  "bias (mean - estimate)", digits, c.bias * v.scale, digits,
-                  c.bias_standard_error * v.scale);
-    os << line;
-    row(c.applied ? "corrected estimate" : "reported (uncorrected)", c.corrected);
-    row("its standard uncertainty", c.standard_uncertainty);
-    std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n", "its interval", digits,
-                  c.interval.low * v.scale, digits, c.interval.high * v.scale);
-    os << line;
+    const auto treatment_rows = [&](const uncertainty::BiasCorrection& t, bool surrogate) {
+      std::snprintf(line, sizeof line, "  %-28s %.*f (MC standard error %.*f)\n",
+                    surrogate ? "bias (at the surrogate)" : "bias (mean - estimate)", digits,
+                    t.bias * v.scale, digits, t.bias_standard_error * v.scale);
+      os << line;
+      if (surrogate) row("u of the bias estimate", t.bias_uncertainty);
+      row(t.applied ? "corrected estimate" : "reported (uncorrected)", t.corrected);
+      row("its standard uncertainty", t.standard_uncertainty);
+      std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n", "its interval", digits,
+                    t.interval.low * v.scale, digits, t.interval.high * v.scale);
+      os << line;
+    };
+    const bool shrinkage = v.correction != v.paper && v.treatment == "shrinkage";
+    if (shrinkage) {
+      os << "  -- bias treatment: shrinkage (default; docs/validation.md)\n";
+      treatment_rows(c, true);
+      if (c.clamped) os << "  correction: the corrected value fell below 0 and is reported as 0\n";
+      os << "  -- the seed study's treatment (bias of the Monte Carlo on the measured data)\n";
+    }
+    treatment_rows(*v.paper, false);
     // (The engine's note carries the numbers in the library's unit, mm: the JSON keeps it.)
     os << "  correction: "
-       << (c.applied ? "applied (the interval is the Monte Carlo interval reflected about the "
-                       "estimate)"
-                     : "refused: it would make the value negative; the uncorrected estimate is "
-                       "reported with u enlarged by |bias| and the interval widened by |bias|")
+       << (v.paper->applied
+               ? "applied (the interval is the Monte Carlo interval reflected about the "
+                 "estimate)"
+               : "refused: it would make the value negative; the uncorrected estimate is "
+                 "reported with u enlarged by |bias| and the interval widened by |bias|")
        << "\n";
   }
   return os.str();

@@ -76,6 +76,11 @@ struct DigitalModel {
   NoiseModel noise;
 };
 
+/// The model used when the kinematic errors are left uncorrected and only taken into account
+/// in the uncertainty: `model` with kinematics = model.kinematics.uncorrected() (correction
+/// then removes nothing, and each trial draws the whole kinematic error about zero). O(k³).
+DigitalModel with_kinematics_uncorrected(const DigitalModel& model);
+
 /// Checks a model built in code, as the loader checks a file: every value finite, σ and u
 /// ≥ 0, harmonic orders in 1…max_probe_harmonic_order and distinct. Throws InvalidParameter
 /// naming the field (with the file's key path, e.g. "noise.scanning_sigma_um") and value.

@@ -164,6 +164,12 @@ class KinematicModel {
 
   /// The estimated errors: the known systematic part, which correction removes.
   KinematicErrors nominal() const;
+  /// The model of the same machine when its estimated errors are NOT corrected but only taken
+  /// into account in the uncertainty (the seed study's treatment of the kinematic errors):
+  /// every parameter has estimate 0 and variance u_i² + m_i² (m_i its estimate), i.e. the
+  /// uncorrected systematic error enters as a zero-mean quantity with the second moment of the
+  /// error it leaves (GUM F.2.4.5 practice); covariances between parameters are kept. O(k³).
+  KinematicModel uncorrected() const;
   /// A realisation drawn from N(mean, covariance): mean + L z, L the Cholesky factor of the
   /// covariance of the uncertain parameters, z from rng.fill_standard_normal (one bulk call,
   /// as many normals as parameters with non-zero variance). O(k²) for k such parameters.

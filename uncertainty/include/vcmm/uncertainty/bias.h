@@ -37,6 +37,11 @@ struct BiasCorrection {
                                 ///< 0 for a non-negative quantity); refused: see below
   bool applied = false;
   bool refused = false;         ///< correction would make a non-negative quantity negative
+  /// The standard uncertainty of the bias estimate itself as an estimate of the true bias
+  /// (its own component of standard_uncertainty); 0 where the treatment does not assess it
+  /// (correct_bias: the study's treatment takes b as exact up to its Monte Carlo error).
+  double bias_uncertainty = 0;
+  bool clamped = false;         ///< corrected value below 0 set to 0 (correct_bias_at_surrogate)
   std::string note;             ///< one sentence saying what was done and why
 };
 
@@ -52,5 +57,32 @@ struct BiasCorrection {
 /// Exact arithmetic apart from rounding: O(1).
 BiasCorrection correct_bias(double estimate, const MeasurandSummary& summary,
                             bool non_negative);
+
+/// The bias evaluated at a surrogate of the truth (docs/uncertainty.md, "Bias at a surrogate
+/// truth"). The virtual experiment is run on a surrogate ŝ of the true object (e.g. a profile
+/// from which the estimated error power has been removed) instead of on the measured data,
+/// whose errors it would otherwise add a second time. Inputs: y the estimate from the data;
+/// f_s = f(ŝ) the measurand of the surrogate; `at_surrogate` the summary of the trials
+/// y*_t = f(ŝ + e_t); `surrogate_spread` the summary of z*_t = f(S(ŝ + e_t)), the surrogate
+/// estimator S applied to each trial, whose spread is the uncertainty of f(ŝ) as an estimate
+/// of the true f and so of the bias evaluated there. Then
+///   b = ȳ* − f_s,   corrected = y − b  (a non-negative quantity: max(0, y − b), `clamped`),
+///   u_b = s(z*),    u_c² = s(y*)² + u_b² + s(y*)²/M   (M: at_surrogate.count),
+/// bias_standard_error = s(y*)/√M, bias_uncertainty = u_b, and the interval
+///   [c − √((y_high − ȳ*)² + (k_p u_b)²),  c + √((ȳ* − y_low)² + (k_p u_b)²)]
+/// with [y_low, y_high] the probabilistically symmetric interval of the y*, k_p the normal
+/// coverage factor of its probability (1.96 for 0.95): the Monte Carlo interval reflected
+/// about the corrected value and widened by the bias uncertainty taken as normal; its lower
+/// end clamped at 0 for a non-negative quantity.
+/// Throws InvalidInput for NaN/inf inputs, a count of 0, a negative standard uncertainty, an
+/// interval with low > high, or `non_negative` with a negative estimate or f_s. O(1).
+BiasCorrection correct_bias_at_surrogate(double estimate, double surrogate_value,
+                                         const MeasurandSummary& at_surrogate,
+                                         const MeasurandSummary& surrogate_spread,
+                                         bool non_negative);
+
+/// The standard normal quantile Φ⁻¹(p), p in (0, 1) (InvalidInput otherwise): Acklam's rational
+/// approximation refined by one Halley step on erfc, relative error < 1e-15. O(1).
+double standard_normal_quantile(double p);
 
 }  // namespace vcmm::uncertainty

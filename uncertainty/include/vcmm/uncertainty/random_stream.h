@@ -92,4 +92,10 @@ class RandomStream {
   std::array<std::uint64_t, buffer_words> words_;  // filled by refill() before any read
 };
 
+/// The seed of a further, statistically independent run derived from a run's seed and a
+/// purpose tag (e.g. a pilot run, or a second Monte Carlo run of the same evaluation):
+/// splitmix64(splitmix64(seed) ⊕ splitmix64(purpose + 1)), so different tags and different
+/// seeds give unrelated Philox keys. O(1).
+std::uint64_t derived_seed(std::uint64_t seed, std::uint64_t purpose);
+
 }  // namespace vcmm::uncertainty

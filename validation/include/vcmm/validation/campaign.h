@@ -28,6 +28,7 @@
 
 #include "vcmm/errormodel/measurement.h"
 #include "vcmm/geometry/point.h"
+#include "vcmm/validation/form_bias.h"
 #include "vcmm/validation/reference_values.h"
 
 namespace vcmm::validation {
@@ -83,6 +84,13 @@ struct EvaluationSettings {
   std::uint64_t seed = 1;         ///< see measurement_seed()
   double coverage_probability = 0.95;  ///< in (0, 1)
   double k = 2.0;                 ///< coverage factor of E_n, > 0
+  /// The roundness's bias treatment whose values are the campaign's "corrected" ones
+  /// ("bias_treatment": "shrinkage" (default) or "paper"); the study's is always reported too.
+  RoundnessBiasTreatment bias_treatment = RoundnessBiasTreatment::shrinkage;
+  /// "kinematic_errors": "corrected" (default: the model's estimated kinematic errors are
+  /// removed from the data) or "uncertainty_only" (not corrected, only in the uncertainty:
+  /// errormodel::with_kinematics_uncorrected).
+  bool kinematics_corrected = true;
   friend bool operator==(const EvaluationSettings&, const EvaluationSettings&) = default;
 };
 

@@ -3,16 +3,20 @@
 // treatments, and the tables (docs/validation.md, "Running a campaign"; output files:
 // docs/formats.md, "Validation output directory").
 //
-// Bias treatments compared per measurement and measurand (docs/validation.md):
+// Bias treatments compared per measurement and measurand (docs/validation.md, "Bias
+// treatments"):
 //   uncorrected  y with u                               E_n = (x_ref − y) / (k·√(u_ref² + u²))
-//   corrected    (a) the seed study: bias b from the virtual experiment run on the measured
-//                (corrected-for-systematics) points; y − b with u_c (uncertainty::correct_bias)
-//   denoised     (b) bias from the virtual experiment run on the denoised virtual truth (the
-//                measured profile after the Gaussian filter, denoised_ring): y − b_dn
-//   inflated     (c) no correction; U = k·u + |b|: E_n = (x_ref − y) / √((k u_ref)² + (k u + |b|)²)
-// A correction that would make the roundness negative is refused (the uncorrected value is
-// reported with u = √(u² + b²)).
-//
+//   corrected    the campaign's treatment (evaluation.bias_treatment): by default, for the
+//                roundness, the shrinkage treatment (form_bias.h: bias at a surrogate of the true
+//                profile, u_c including the uncertainty of the bias estimate); the diameter
+//                always takes the study's correction (its bias is ~0)
+//   paper        (a) the seed study: bias b from the virtual experiment run on the measured
+//                (corrected-for-systematics) points; y − b with u_c (uncertainty::correct_bias);
+//                refused (y reported, u = √(u² + b²)) where it would make the roundness negative
+//   denoised     (b) optional: bias from the virtual experiment run on the denoised virtual
+//                truth (the measured profile after the Gaussian filter, denoised_ring)
+//   inflated     (c) no correction; U = k·u + |b| (b of the study's treatment):
+//                E_n = (x_ref − y) / √((k u_ref)² + (k u + |b|)²)
 // Resumable: each finished measurement is written as OUT/measurements/<id>.json (atomically,
 // after its samples and residuals) with a fingerprint of everything its numbers depend on
 // (model, points and reference files' bytes, the entry, the evaluation settings, the
@@ -43,16 +47,22 @@ struct MeasurandOutcome {
   double reference_mm = 0.0, u_reference_mm = 0.0;
   std::string reference_method;
   double estimate_mm = 0.0;       ///< y, from the (systematics-corrected) data
-  double u_mm = 0.0;              ///< Monte Carlo standard uncertainty
+  double u_mm = 0.0;              ///< Monte Carlo standard uncertainty (the study's run, on x̂)
   double mc_mean_mm = 0.0;
-  double bias_mm = 0.0, bias_standard_error_mm = 0.0;
   double interval_low_mm = 0.0, interval_high_mm = 0.0;  ///< MC probabilistically symmetric
-  double corrected_mm = 0.0, u_corrected_mm = 0.0;       ///< treatment (a)
+  // The campaign's treatment ("corrected").
+  std::string treatment;          ///< "shrinkage" or "paper"
+  double bias_mm = 0.0, bias_standard_error_mm = 0.0;
+  double bias_uncertainty_mm = 0.0;  ///< u of the bias estimate itself (0: not assessed)
+  double corrected_mm = 0.0, u_corrected_mm = 0.0;
   bool correction_applied = false;
   std::string note;
+  // The seed study's treatment (a).
+  double bias_paper_mm = 0.0, corrected_paper_mm = 0.0, u_corrected_paper_mm = 0.0;
+  bool paper_applied = false;
   double corrected_denoised_mm = 0.0, u_denoised_mm = 0.0;  ///< treatment (b), NaN if not run
   bool denoised_applied = false;
-  double en = 0.0, en_corrected = 0.0, en_denoised = 0.0, en_inflated = 0.0;
+  double en = 0.0, en_corrected = 0.0, en_paper = 0.0, en_denoised = 0.0, en_inflated = 0.0;
   double zeta = 0.0, zeta_corrected = 0.0;
   double true_mm = 0.0;  ///< the true value (demo), NaN otherwise
 };
@@ -79,7 +89,7 @@ struct SummaryRow {
   std::string factor;     ///< all, location, orientation_deg, height, mode
   std::string level;      ///< "all" or the level
   std::string measurand;  ///< diameter, roundness
-  std::string treatment;  ///< uncorrected, corrected, denoised, inflated
+  std::string treatment;  ///< uncorrected, corrected, paper, denoised, inflated
   std::size_t n = 0;
   double share_within_1 = 0.0;  ///< share of |E_n| ≤ 1
   double mean_en = 0.0, rms_en = 0.0;
@@ -96,9 +106,9 @@ struct TreatmentRow {
 
 struct CampaignRunOptions {
   unsigned threads = 0;  ///< Monte Carlo threads (0: all cores)
-  /// Run treatment (b) (a second Monte Carlo per measurement, on the denoised truth; needs a
-  /// filter cut-off in the campaign).
-  bool denoised_treatment = true;
+  /// Run treatment (b) as well (one more Monte Carlo per measurement, on the denoised truth;
+  /// needs a filter cut-off in the campaign). Off by default: the demo shows it biased.
+  bool denoised_treatment = false;
   /// Known true values by measurement id (demo); missing ids have none.
   std::map<std::string, RingMeasurands> truth;
   /// Called before each measurement (index, count, id, resumed?) and during its Monte Carlo.
@@ -132,7 +142,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const std::filesystem::pa
 
 /// The summary rows of a set of outcomes (factor "all" first, then location, orientation_deg,
 /// height, mode; levels in order of first appearance; treatments uncorrected, corrected,
-/// denoised, inflated; rows with no finite E_n are left out).
+/// paper, denoised, inflated; rows with no finite E_n are left out).
 std::vector<SummaryRow> summarize_campaign(const std::vector<MeasurementOutcome>& outcomes);
 
 }  // namespace vcmm::validation

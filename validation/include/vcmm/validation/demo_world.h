@@ -7,10 +7,12 @@
 // Because the truth is known here, the demo can score what a real campaign cannot: the error
 // of every reported value against the true value.
 //
-// The plan (a fractional factorial, 33 measurements per probing mode):
-//   - every location × every height at orientation 0°            7 × 3 = 21
-//   - orientations 90°, 180°, 270° at the middle height at the centre and three corners
-//                                                                4 × 3 = 12
+// The plan (the seed study's: 11 set-ups × 3 heights × 2 probing modes = 66 measurements):
+//   - the ring at each of the 7 locations at orientation 0°                     7 set-ups
+//   - the ring re-mounted at the centre C in 4 orientations 0°, 90°, 180°, 270°  4 set-ups
+//   each measured at the top, middle and bottom heights, scanning and touch-trigger.
+//   Ids: "<location>-O<deg>-<height>-<mode>" (location series), "C-R<deg>-<height>-<mode>"
+//   (orientation series at the centre; C-R000 is a second set-up of C-O000).
 // Locations (machine mm, ring centre; the moving-bridge axis ranges of examples/cmm_model.json):
 //   C centre (600, 500, 250); corners L1 (200, 150, 150), L2 (1000, 150, 150), L3 (200, 850, 150),
 //   L4 (1000, 850, 150); elevated E1 (600, 500, 600), E2 (1000, 850, 600).
@@ -22,6 +24,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vcmm/errormodel/digital_model.h"
@@ -36,6 +39,9 @@ namespace vcmm::validation {
 /// The demo's knobs (defaults: the seed study's setting).
 struct DemoWorldOptions {
   std::uint64_t seed = 20261122;              ///< fixes the world (truth draw, noise, references)
+  /// Multiplies the true form of the ring (every harmonic's amplitude), so the bias treatments
+  /// are tested where the form dominates the errors as well as where the errors dominate.
+  double form_scale = 1.0;
   Eigen::Index scanning_points = 3600;
   /// Touch-trigger points: 360 meets ISO 12181-2's ≥ 7 points per cut-off wavelength at 50 UPR
   /// (a filter is applied to both modes alike).
@@ -53,7 +59,7 @@ struct DemoWorldOptions {
 
 /// One planned measurement of the world, with everything the truth knows about it.
 struct DemoMeasurement {
-  std::string id;            ///< e.g. "C-O000-middle-scan"
+  std::string id;            ///< e.g. "C-O000-middle-scan", "C-R090-top-touch"
   std::string location;      ///< C, L1 … L4, E1, E2
   double orientation_deg = 0.0;
   std::string height;        ///< top, middle, bottom
@@ -77,10 +83,12 @@ struct DemoWorld {
 };
 
 /// Builds the world deterministically from options.seed: the form per height (the seed study's
-/// harmonics, amplitudes and phases varied by ±20 % / ±0.3 rad per height), the true CMM (one
+/// harmonics times form_scale, amplitudes and phases varied by ±20 % / ±0.3 rad per height),
+/// the true CMM (one
 /// draw of temperature coefficient, kinematic and probe errors from `model`), per measurement a
 /// temperature reading, the true temperature N(reading, u_T²), fresh roughness and noise, and
 /// the reference measurements. Throws as the error model. O(66 · N).
+/// Throws std::invalid_argument if form_scale is not finite and ≥ 0, or point counts < 8.
 DemoWorld make_demo_world(const errormodel::DigitalModel& model, const DemoWorldOptions& options);
 
 /// Writes the world as a campaign into `dir`: measurements/<id>.csv (what the CMM reported),
@@ -93,6 +101,10 @@ std::map<std::string, RingMeasurands> write_demo_campaign(const DemoWorld& world
                                                           const std::string& model_json_text,
                                                           const EvaluationSettings& evaluation,
                                                           const std::filesystem::path& dir);
+
+/// The text of the bundled example model, examples/cmm_model.json, compiled into the library
+/// (the demo's default model). O(1).
+std::string_view bundled_example_model_json();
 
 /// "top", "middle", "bottom" → workpiece z of the section (mm): +8, 0, −8.
 double demo_height_mm(const std::string& height);

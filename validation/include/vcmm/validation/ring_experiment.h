@@ -8,10 +8,11 @@
 //   y  = f(x̂)                                 measurands from the data: LS diameter, RONt
 //   trial t:  e_t ~ model (draw_errors),  x_t = correct(simulate(x̂, e_t)),  y_t = f(x_t)
 //   samples y_1 … y_M  →  mean, u, coverage intervals;  bias b = ȳ − y;  corrected y − b
-// f: the points are projected on the workpiece XY plane (the ring axis is workpiece Z);
-//   diameter = 2 · r_LS of the unfiltered profile (ISO 12181-2 LSCI, the seed study's diameter);
-//   roundness = RONt of the ISO 16610-21 Gaussian-filtered profile about the chosen reference
-//   circle (MZ by default; MI in the seed study).
+// f: ring_evaluation.h (LS diameter; RONt after the Gaussian filter about the reference circle).
+// Bias: the diameter keeps the study's correction (above); the roundness is corrected by the
+// treatment chosen in the options — by default the shrinkage treatment (form_bias.h), which runs
+// a pilot and a second Monte Carlo at a surrogate of the true profile; the study's correction is
+// always reported beside it (roundness_paper).
 // Random numbers: trial t draws everything from uncertainty::RandomStream(seed, t), so a seed
 // fixes every number whatever the thread count.
 #pragma once
@@ -30,53 +31,11 @@
 #include "vcmm/uncertainty/bias.h"
 #include "vcmm/uncertainty/monte_carlo.h"
 #include "vcmm/uncertainty/random_stream.h"
+#include "vcmm/validation/form_bias.h"
 #include "vcmm/validation/reference_values.h"  // ReferenceCircle
+#include "vcmm/validation/ring_evaluation.h"
 
 namespace vcmm::validation {
-
-/// How the measurands are evaluated from a profile.
-struct RingEvaluationOptions {
-  ReferenceCircle reference = ReferenceCircle::minimum_zone;
-  /// ISO 16610-21 cut-off (UPR) applied before the roundness evaluation; none: unfiltered.
-  /// The diameter is always the LS diameter of the unfiltered points.
-  std::optional<double> filter_cutoff_upr = 50.0;
-};
-
-/// Index of each measurand in the Monte Carlo sample vector.
-enum RingMeasurand : std::size_t { diameter = 0, roundness = 1 };
-inline constexpr std::size_t ring_measurand_count = 2;
-
-/// The measurands of one ring measurement (mm).
-struct RingMeasurands {
-  double diameter_mm = 0.0;   ///< 2 · r_LS, unfiltered profile
-  double roundness_mm = 0.0;  ///< RONt of the (filtered) profile about the reference circle
-};
-
-/// A profile evaluated in detail (for reports): the measurands and the deviations about the
-/// reference circle.
-struct RingProfileEvaluation {
-  RingMeasurands measurands;
-  geometry::Point2 reference_center;   ///< centre of the reference circle (filtered profile)
-  double reference_radius_mm = 0.0;    ///< MZ: (R + r)/2; MI, MC, LS: the circle's radius
-  /// Per input point, in input order: the angle about reference_center (rad, [0, 2π)), the
-  /// radial deviation of the unfiltered point and of the filtered point from the reference
-  /// radius (mm).
-  std::vector<double> angle_rad, deviation_mm, filtered_deviation_mm;
-};
-
-/// Projects the measurement's points on the workpiece XY plane.
-std::vector<geometry::Point2> ring_profile(const errormodel::Measurement& m);
-
-/// The measurands of a ring profile (file comment). Preconditions as the geometry functions:
-/// ≥ 8 finite points forming a closed profile when filtered (geometry::InvalidInput);
-/// geometry::UndefinedResult where a reference circle does not exist. O(n log n).
-RingMeasurands evaluate_ring(std::span<const geometry::Point2> profile,
-                             const RingEvaluationOptions& options);
-RingMeasurands evaluate_ring(const errormodel::Measurement& m, const RingEvaluationOptions& options);
-
-/// As evaluate_ring, with the deviations about the reference circle. O(n log n).
-RingProfileEvaluation evaluate_ring_profile(std::span<const geometry::Point2> profile,
-                                            const RingEvaluationOptions& options);
 
 /// The denoised virtual truth of a ring measurement (treatment (b) of the bias study): every
 /// point moved along its ray from the LS centre of the XY profile to the ISO 16610-21 filtered
@@ -119,21 +78,38 @@ struct RingUncertaintyOptions {
   errormodel::Stages stages = errormodel::Stages::all();
   uncertainty::MonteCarloOptions monte_carlo;           ///< trials, seed, threads, progress, cancel
   std::optional<uncertainty::AdaptiveOptions> adaptive; ///< set: JCGM 101 7.9 instead of fixed M
+  RoundnessBiasTreatment roundness_bias = RoundnessBiasTreatment::shrinkage;
+  ShrinkageOptions shrinkage;  ///< the shrinkage treatment's tunables
+};
+
+/// The shrinkage treatment's run (form_bias.h): what it estimated and its Monte Carlo.
+struct SurrogateRun {
+  HarmonicShrinkage shrinkage;                ///< V_k, c_k, K (pilot run)
+  Surrogate surrogate;                        ///< p̂ and f(p̂)
+  uncertainty::MonteCarloResult monte_carlo;  ///< measurands: SurrogateMeasurand
 };
 
 /// The result for one measurement.
 struct RingUncertaintyResult {
   errormodel::Measurement best_estimate;  ///< the corrected data x̂
   RingMeasurands estimate;                ///< y = f(x̂)
-  uncertainty::MonteCarloResult monte_carlo;
-  uncertainty::BiasCorrection diameter;   ///< never refused (a diameter cannot go negative here)
-  uncertainty::BiasCorrection roundness;  ///< refused when the correction would go negative
+  uncertainty::MonteCarloResult monte_carlo;  ///< the study's virtual experiment, on x̂
+  uncertainty::BiasCorrection diameter;   ///< the study's correction (never refused)
+  /// The roundness as the chosen treatment reports it (options.roundness_bias).
+  uncertainty::BiasCorrection roundness;
+  /// The study's treatment of the roundness, always (refused when it would go negative).
+  uncertainty::BiasCorrection roundness_paper;
+  RoundnessBiasTreatment roundness_treatment = RoundnessBiasTreatment::shrinkage;
+  std::optional<SurrogateRun> surrogate;  ///< set by the shrinkage treatment
 };
 
 /// Uncertainty of the diameter and roundness of one ring measurement (file comment).
 /// `measured` is what the CMM reported (validated: InvalidInput); the model is applied with
-/// the given stages. Throws as the pieces; the Monte Carlo result's status says whether it
-/// completed, converged or was cancelled. O(M · n log n).
+/// the given stages. The shrinkage treatment adds a pilot run (options.shrinkage.pilot_trials)
+/// and a second run with as many trials as the first completed, seeded by
+/// uncertainty::derived_seed(seed, 1) and (seed, 2). Throws as the pieces; the Monte Carlo
+/// result's status says whether it completed, converged or was cancelled (a cancelled first
+/// run skips the second: surrogate empty, roundness = the study's). O(M · n log n).
 RingUncertaintyResult evaluate_ring_uncertainty(const errormodel::DigitalModel& model,
                                                 const errormodel::Measurement& measured,
                                                 const RingUncertaintyOptions& options);

@@ -1,6 +1,6 @@
 // `vcmm uncertainty --model MODEL.json --points MEASURED.csv [--trials M | --adaptive TOL_UM]
 //                   [--seed S] [--threads T] [--reference MZ|MI|LS|MC] [--filter-upr N|none]
-//                   [--bias-treatment shrinkage|paper] [--pilot-trials N]
+//                   [--bias-treatment shrinkage|paper] [--pilot-trials N] [--surrogate-trials N]
 //                   [--json] [-o OUT] [--samples OUT.csv] [--progress auto|always|never]`
 // Monte Carlo uncertainty (JCGM 101) of the diameter and roundness of one ring measurement,
 // with the bias and the bias-corrected estimates: the roundness by the shrinkage treatment
@@ -43,6 +43,7 @@ struct UncertaintyOptions {
   std::string progress = "auto";
   std::string bias_treatment = "shrinkage";
   std::uint64_t pilot_trials = va::ShrinkageOptions{}.pilot_trials;
+  std::uint64_t surrogate_trials = va::ShrinkageOptions{}.surrogate_trials;
 };
 
 constexpr std::uint64_t kDefaultTrials = 100'000;
@@ -85,6 +86,7 @@ int run_uncertainty(const UncertaintyOptions& o) {
     progress_mode = progress_mode_from_string(o.progress);
     options.roundness_bias = *va::roundness_bias_treatment_from_string(o.bias_treatment);
     options.shrinkage.pilot_trials = o.pilot_trials;
+    options.shrinkage.surrogate_trials = o.surrogate_trials;
   } catch (const std::invalid_argument& ex) {
     std::cerr << "vcmm uncertainty: error: " << ex.what() << "\n";
     return kUsage;
@@ -165,6 +167,11 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
                   "trials of the shrinkage treatment's pilot run (error power per harmonic)")
       ->check(CLI::Range(std::uint64_t{20}, std::uint64_t{10'000'000}))
       ->default_val(va::ShrinkageOptions{}.pilot_trials);
+  cmd->add_option("--surrogate-trials", opts->surrogate_trials,
+                  "trials of the shrinkage treatment's second run: min(this, --trials); 0: as "
+                  "many as --trials")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{100'000'000}))
+      ->default_val(va::ShrinkageOptions{}.surrogate_trials);
   cmd->add_flag("--json", opts->json, "print JSON instead of the table");
   cmd->add_option("-o,--output", opts->output, "write the report to this file (atomically)");
   cmd->add_option("--samples", opts->samples,

@@ -32,22 +32,108 @@ constexpr double kPi = std::numbers::pi;
 /// (header): 1 % of its amplitude.
 constexpr double kMaxPhaseError = 0.01;
 
-/// cos/sin of 2πj/n, j < n, and the FFT plan of length n (cached per thread: grid_plan).
-struct GridPlan {
-  explicit GridPlan(std::size_t n) : fft(n), cos(n), sin(n) {
+/// The real DFT of length n: cos/sin of 2πj/n (j < n) for the grid test and the direct sums,
+/// and X_k (k ≤ n/2) of real input by one complex FFT of length n/2 for even n (the even and
+/// odd samples as real and imaginary parts; X_k = E_k + ω^k O_k, ω = e^{−2πi/n}, with
+/// E_k = (Z_k + conj Z_{N−k})/2 and O_k = (Z_k − conj Z_{N−k})/(2i)), of length n for odd n.
+/// Cached per thread (grid_plan).
+class GridPlan {
+ public:
+  explicit GridPlan(std::size_t n)
+      : n_(n), even_(n % 2 == 0), fft_(even_ ? n / 2 : n), cos(n), sin(n) {
     for (std::size_t j = 0; j < n; ++j) {
       const internal::Cx w = internal::unit_root(j, n);  // e^{−2πij/n}
       cos[j] = w.re;
       sin[j] = -w.im;
     }
   }
-  std::size_t size() const { return fft.size(); }
-  internal::ComplexFft fft;
+  std::size_t size() const { return n_; }
+
+  /// X_k = Σ_j x_j e^{−2πi jk/n} for k = 0 … K (K ≤ n/2).
+  void forward(const double* x, std::size_t K, double* re, double* im) {
+    const std::size_t m = fft_.size();
+    zr_.resize(m);
+    zi_.resize(m);
+    if (!even_) {
+      std::copy(x, x + n_, zr_.begin());
+      std::fill(zi_.begin(), zi_.end(), 0.0);
+      fft_.forward(zr_.data(), zi_.data());
+      std::copy(zr_.begin(), zr_.begin() + static_cast<std::ptrdiff_t>(K + 1), re);
+      std::copy(zi_.begin(), zi_.begin() + static_cast<std::ptrdiff_t>(K + 1), im);
+      return;
+    }
+    for (std::size_t j = 0; j < m; ++j) {
+      zr_[j] = x[2 * j];
+      zi_[j] = x[2 * j + 1];
+    }
+    fft_.forward(zr_.data(), zi_.data());
+    for (std::size_t k = 0; k <= K; ++k) {
+      const std::size_t a = k % m, b = (m - k % m) % m;  // Z_k and Z_{N−k} (indices mod N)
+      const double er = 0.5 * (zr_[a] + zr_[b]), ei = 0.5 * (zi_[a] - zi_[b]);
+      const double or_ = 0.5 * (zi_[a] + zi_[b]), oi = -0.5 * (zr_[a] - zr_[b]);
+      const double c = cos[k], sn = -sin[k];  // ω^k = cos − i sin
+      re[k] = er + (or_ * c - oi * sn);
+      im[k] = ei + (or_ * sn + oi * c);
+    }
+  }
+
+  /// y_j = (1/n) Σ_k Y_k e^{+2πi jk/n} for the real signal whose spectrum is Y_k (k ≤ K, zero
+  /// for K < k ≤ n/2, Y_{n−k} = conj Y_k).
+  void inverse(const double* re, const double* im, std::size_t K, double* y) {
+    const std::size_t m = fft_.size();
+    zr_.assign(m, 0.0);
+    zi_.assign(m, 0.0);
+    const auto at = [&](std::size_t k, double& r, double& i) {  // Y_k for 0 ≤ k ≤ n
+      const std::size_t kk = k <= n_ / 2 ? k : n_ - k;
+      if (kk > K) {
+        r = i = 0.0;
+        return;
+      }
+      r = re[kk];
+      i = k <= n_ / 2 ? im[kk] : -im[kk];
+    };
+    const double inv_n = 1.0 / static_cast<double>(n_);
+    if (!even_) {
+      for (std::size_t k = 0; k < n_; ++k) at(k, zr_[k], zi_[k]);
+      fft_.inverse(zr_.data(), zi_.data());
+      for (std::size_t j = 0; j < n_; ++j) y[j] = zr_[j] * inv_n;
+      return;
+    }
+    // E_k = (Y_k + Y_{k+N})/2, O_k = (Y_k − Y_{k+N}) ω^{−k}/2, Z_k = E_k + i O_k (k < N).
+    for (std::size_t k = 0; k < m; ++k) {
+      double ar, ai, br, bi;
+      at(k, ar, ai);
+      at(k + m, br, bi);
+      const double er = 0.5 * (ar + br), ei = 0.5 * (ai + bi);
+      const double dr = 0.5 * (ar - br), di = 0.5 * (ai - bi);
+      const double c = cos[k], sn = sin[k];  // ω^{−k} = cos + i sin
+      const double or_ = dr * c - di * sn, oi = dr * sn + di * c;
+      zr_[k] = er - oi;
+      zi_[k] = ei + or_;
+    }
+    fft_.inverse(zr_.data(), zi_.data());
+    const double inv_m = 1.0 / static_cast<double>(m);
+    for (std::size_t j = 0; j < m; ++j) {
+      y[2 * j] = zr_[j] * inv_m;
+      y[2 * j + 1] = zi_[j] * inv_m;
+    }
+  }
+
+ private:
+  std::size_t n_;
+  bool even_;
+  internal::ComplexFft fft_;
+  std::vector<double> zr_, zi_;
+
+ public:
   std::vector<double> cos, sin;
-  std::vector<double> re, im;  // scratch
 };
 
 GridPlan& grid_plan(std::size_t n) { return internal::thread_local_plan<GridPlan, 6>(n); }
+
+/// Synthesis by direct sums when at most this many gains are non-zero (each costs ~2n
+/// multiply-adds with the rotation recurrence, against ~5 n log₂ n for the inverse FFT).
+constexpr std::size_t kDirectSynthesisMaxTerms = 12;
 
 [[noreturn]] void fail(const std::string& message) {
   throw InvalidInput("ProfileHarmonics: " + message);
@@ -88,7 +174,7 @@ void ProfileHarmonics::analyse(std::span<const Point2> points, Point2 center, do
          << ", y = " << points[i].y << ")";
       fail(os.str());
     }
-    const double r = std::hypot(dx, dy);
+    const double r = std::sqrt(dx * dx + dy * dy);  // mm-scale data: no overflow to guard
     if (!(r > 0.0)) fail("point " + std::to_string(i) + " lies at the centre: no direction");
     deviation_[i] = r - radius;
     inv_r_[i] = 1.0 / r;
@@ -120,9 +206,9 @@ void ProfileHarmonics::analyse(std::span<const Point2> points, Point2 center, do
     path_ = HarmonicsPath::fft;
     sense_ = sense;
     theta0_ = std::atan2(uy, ux);
-    x_re_.assign(deviation_.begin(), deviation_.end());
-    x_im_.assign(n, 0.0);
-    plan.fft.forward(x_re_.data(), x_im_.data());
+    x_re_.resize(max_order + 1);
+    x_im_.resize(max_order + 1);
+    plan.forward(deviation_.data(), max_order, x_re_.data(), x_im_.data());
     const double inv_n = 1.0 / static_cast<double>(n);
     for (std::size_t k = 0; k <= max_order; ++k) {
       // C_k = X_k e^{−ikθ_0}/n (σ = +1) or conj(X_k) e^{−ikθ_0}/n (σ = −1).
@@ -198,20 +284,35 @@ void ProfileHarmonics::synthesize(std::span<const double> gains, std::vector<Poi
   dev.resize(n);
   if (path_ == HarmonicsPath::fft) {
     GridPlan& plan = grid_plan(n);
-    plan.re.assign(n, 0.0);
-    plan.im.assign(n, 0.0);
-    const double inv_n = 1.0 / static_cast<double>(n);
-    for (std::size_t k = 0; k <= max_order_; ++k) {
-      const double g = gains[k] * inv_n;
-      plan.re[k] = g * x_re_[k];
-      plan.im[k] = g * x_im_[k];
-      if (k > 0 && n - k != k) {
-        plan.re[n - k] = g * x_re_[n - k];
-        plan.im[n - k] = g * x_im_[n - k];
+    std::size_t terms = 0;
+    for (double g : gains) terms += g != 0.0 ? 1 : 0;
+    if (terms <= kDirectSynthesisMaxTerms) {
+      // d'_j = Σ_k g_k Re(X_k e^{+2πi jk/n})/n·(2 for 0 < k < n/2): at grid index j the angle
+      // relative to θ_0 is σ·2πj/n, and X_k holds the phase of the grid (file comment).
+      std::fill(dev.begin(), dev.end(), 0.0);
+      const double inv_n = 1.0 / static_cast<double>(n);
+      for (std::size_t k = 0; k <= max_order_; ++k) {
+        if (gains[k] == 0.0) continue;
+        const double f = gains[k] * inv_n * (k == 0 || 2 * k == n ? 1.0 : 2.0);
+        const double xr = f * x_re_[k], xi = f * x_im_[k];
+        // Re((xr + i xi) e^{+iφ}) with φ = 2πjk/n from the table (index jk mod n).
+        std::size_t idx = 0;
+        for (std::size_t j = 0; j < n; ++j) {
+          dev[j] += xr * plan.cos[idx] - xi * plan.sin[idx];
+          idx += k;
+          if (idx >= n) idx -= n;
+        }
       }
+    } else {
+      thread_local std::vector<double> yr, yi;
+      yr.resize(max_order_ + 1);
+      yi.resize(max_order_ + 1);
+      for (std::size_t k = 0; k <= max_order_; ++k) {
+        yr[k] = gains[k] * x_re_[k];
+        yi[k] = gains[k] * x_im_[k];
+      }
+      plan.inverse(yr.data(), yi.data(), max_order_, dev.data());
     }
-    plan.fft.inverse(plan.re.data(), plan.im.data());
-    std::copy(plan.re.begin(), plan.re.end(), dev.begin());
   } else {
     for (std::size_t i = 0; i < n; ++i) {
       const double c1 = std::cos(theta_[i]), s1 = std::sin(theta_[i]);

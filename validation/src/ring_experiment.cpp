@@ -77,8 +77,11 @@ std::function<void(std::uint64_t, std::uint64_t)> offset_progress(
 void run_shrinkage(const errormodel::DigitalModel& model, const RingUncertaintyOptions& options,
                    RingUncertaintyResult& result) {
   const std::uint64_t m1 = result.monte_carlo.trials;
+  const std::uint64_t m2 = options.shrinkage.surrogate_trials == 0
+                               ? m1
+                               : std::min(m1, options.shrinkage.surrogate_trials);
   const std::uint64_t pilot = options.shrinkage.pilot_trials;
-  const std::uint64_t total = m1 + pilot + m1;
+  const std::uint64_t total = m1 + pilot + m2;
   SurrogateRun run;
   uncertainty::MonteCarloOptions pilot_run = options.monte_carlo;
   pilot_run.seed = uncertainty::derived_seed(options.monte_carlo.seed, kPilotPurpose);
@@ -93,7 +96,7 @@ void run_shrinkage(const errormodel::DigitalModel& model, const RingUncertaintyO
   if (options.monte_carlo.progress) options.monte_carlo.progress(m1 + pilot, total);
   run.surrogate = shrunk_ring(result.best_estimate, run.shrinkage, options.evaluation);
   uncertainty::MonteCarloOptions mc = options.monte_carlo;
-  mc.trials = m1;
+  mc.trials = m2;
   mc.seed = uncertainty::derived_seed(options.monte_carlo.seed, kSurrogatePurpose);
   mc.progress = offset_progress(options.monte_carlo.progress, m1 + pilot, total);
   run.monte_carlo = uncertainty::run_monte_carlo(
@@ -121,8 +124,11 @@ RingUncertaintyResult run_on_surface(const errormodel::DigitalModel& model,
   uncertainty::MonteCarloOptions first = options.monte_carlo;
   if (shrinkage && !options.adaptive) {
     const std::uint64_t m = options.monte_carlo.trials;
+    const std::uint64_t m2 = options.shrinkage.surrogate_trials == 0
+                                 ? m
+                                 : std::min(m, options.shrinkage.surrogate_trials);
     first.progress = offset_progress(options.monte_carlo.progress, 0,
-                                     2 * m + options.shrinkage.pilot_trials);
+                                     m + m2 + options.shrinkage.pilot_trials);
   }
   result.monte_carlo =
       options.adaptive

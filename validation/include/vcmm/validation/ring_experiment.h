@@ -106,7 +106,7 @@ struct RingUncertaintyResult {
 /// Uncertainty of the diameter and roundness of one ring measurement (file comment).
 /// `measured` is what the CMM reported (validated: InvalidInput); the model is applied with
 /// the given stages. The shrinkage treatment adds a pilot run (options.shrinkage.pilot_trials)
-/// and a second run with as many trials as the first completed, seeded by
+/// and a second run of min(trials completed, options.shrinkage.surrogate_trials) trials, seeded by
 /// uncertainty::derived_seed(seed, 1) and (seed, 2). Throws as the pieces; the Monte Carlo
 /// result's status says whether it completed, converged or was cancelled (a cancelled first
 /// run skips the second: surrogate empty, roundness = the study's). O(M · n log n).

@@ -15,6 +15,10 @@ enum ExitCode : int {
   kUndefined = 4,      ///< valid input, but the quantity does not exist for it
 };
 
+/// Option check: a finite number (CLI11's Range and PositiveNumber let "nan" through, and
+/// "inf" through an open upper end). Combine with a range: ->check(finite_number())->check(...).
+CLI::Validator finite_number();
+
 /// Registers `vcmm roundness`; the callback stores its exit code in `*exit_code`.
 void add_roundness_command(CLI::App& app, int* exit_code);
 

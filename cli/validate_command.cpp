@@ -231,6 +231,7 @@ void add_demo_command(CLI::App& app, int* exit_code) {
       ->default_val("MI");
   cmd->add_option("--form-scale", o->form_scale,
                   "multiply the world's true form (tests the method where form dominates)")
+      ->check(finite_number())
       ->check(CLI::Range(0.0, 1e6))
       ->default_val(1.0);
   cmd->add_option("--kinematics", o->kinematics,

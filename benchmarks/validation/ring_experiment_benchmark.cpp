@@ -2,8 +2,12 @@
 // on this 2-core machine): a 3600-point scanning measurement (and a 360-point touch-trigger
 // one) of the 171 mm ring at the centre of the volume, all five error sources of
 // examples/cmm_model.json, LS diameter and RONt about the MZ circle after the 50 UPR Gaussian
-// filter. BM_RingMonteCarlo runs the whole engine (threads 1 and 2; items/s = trials/s);
-// BM_RingTrial one trial on one thread (no engine), for the cost split.
+// filter. BM_RingMonteCarlo runs the whole engine (threads 1 and 2; items/s = trials/s) with
+// the study's bias treatment only (one run); BM_RingTrial one trial on one thread (no engine),
+// for the cost split. BM_SurrogateTrial is one trial of the shrinkage treatment's second run
+// (simulate, LS, filter + RONt, harmonics, shrink + RONt; MZ and MI), and BM_RingShrinkage the
+// whole default evaluation (first run, pilot of 400, second run) of M = 10⁴ trials, as one
+// measurement of the demo costs.
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -59,6 +63,7 @@ BENCHMARK(BM_RingTrial)->Arg(3600)->Arg(360)->Unit(benchmark::kMicrosecond);
 void BM_RingMonteCarlo(benchmark::State& state) {
   const em::Measurement measured = measured_ring(state.range(0));
   va::RingUncertaintyOptions o;
+  o.roundness_bias = va::RoundnessBiasTreatment::paper;  // one run: trials/s of the engine
   o.monte_carlo.trials = 2000;
   o.monte_carlo.threads = static_cast<unsigned>(state.range(1));
   for (auto _ : state) {
@@ -73,6 +78,55 @@ BENCHMARK(BM_RingMonteCarlo)
     ->Args({360, 2})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+va::ReferenceCircle circle_of(std::int64_t code) {
+  return code == 0 ? va::ReferenceCircle::minimum_zone : va::ReferenceCircle::maximum_inscribed;
+}
+
+void BM_SurrogateTrial(benchmark::State& state) {
+  const em::Measurement best = em::correct(measured_ring(state.range(0)), example_model());
+  va::RingEvaluationOptions e;
+  e.reference = circle_of(state.range(1));
+  const auto shrinkage = va::estimate_harmonic_shrinkage(example_model(), best, e,
+                                                         em::Stages::all(), {}, {});
+  const va::Surrogate surrogate = va::shrunk_ring(best, *shrinkage, e);
+  const auto experiment = va::surrogate_experiment_factory(
+      example_model(), surrogate.surface, e, em::Stages::all(), *shrinkage)();
+  double out[va::surrogate_measurand_count];
+  std::uint64_t t = 0;
+  for (auto _ : state) {
+    vcmm::uncertainty::RandomStream rng(2, t++);
+    experiment(rng, out);
+    benchmark::DoNotOptimize(out);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.SetLabel(e.reference == va::ReferenceCircle::minimum_zone ? "MZ" : "MI");
+}
+BENCHMARK(BM_SurrogateTrial)
+    ->Args({3600, 0})
+    ->Args({3600, 1})
+    ->Args({360, 1})
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_RingShrinkage(benchmark::State& state) {
+  const em::Measurement measured = measured_ring(state.range(0));
+  va::RingUncertaintyOptions o;
+  o.evaluation.reference = circle_of(state.range(1));
+  o.monte_carlo.trials = 10000;
+  o.monte_carlo.threads = 2;
+  for (auto _ : state) {
+    const auto r = va::evaluate_ring_uncertainty(example_model(), measured, o);
+    benchmark::DoNotOptimize(r.roundness.corrected);
+  }
+  state.SetLabel(o.evaluation.reference == va::ReferenceCircle::minimum_zone ? "MZ" : "MI");
+}
+BENCHMARK(BM_RingShrinkage)
+    ->Args({3600, 1})
+    ->Args({360, 1})
+    ->Args({3600, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
 
 }  // namespace
 

@@ -119,6 +119,49 @@ TEST(CliDemo, SmallDemoRunsAndResumes) {
   EXPECT_FALSE(fs::exists(scratch_dir() / "validate" / "treatments.csv"));
 }
 
+TEST(CliDemo, BundledModelIsTheExampleFileAndOptionsAreChecked) {
+  // Without --model the demo uses the compiled-in examples/cmm_model.json: byte for byte the
+  // file, so a run with the file resumes every measurement of a run without it.
+  const fs::path out = scratch_dir() / "demo_bundled";
+  fs::remove_all(out);
+  const std::string common = " -o '" + out.string() + "' --trials 100 --progress never";
+  const CliRun a = run("demo" + common);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_NE(a.err.find("bundled example model"), std::string::npos) << a.err;
+  const CliRun b = run("demo --model '" + kModel + "'" + common);
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_NE(b.out.find("(0 computed, 66 resumed)"), std::string::npos) << b.out;
+  // The seed study's reference circle is the default; the settings reach the campaign.
+  const std::string campaign = slurp(out / "world" / "campaign.json");
+  EXPECT_NE(campaign.find("\"reference_circle\": \"MI\""), std::string::npos);
+  EXPECT_NE(campaign.find("\"bias_treatment\": \"shrinkage\""), std::string::npos);
+  EXPECT_NE(campaign.find("\"kinematic_errors\": \"corrected\""), std::string::npos);
+  // Bad values: usage errors naming the option.
+  for (const char* bad : {" --form-scale -1", " --form-scale nan", " --reference XX",
+                          " --kinematics partly", " --bias-treatment denoised"}) {
+    const CliRun c = run(std::string("demo -o '") + (scratch_dir() / "demo_bad").string() +
+                         "' --trials 100 --progress never" + bad);
+    EXPECT_EQ(c.exit_code, 2) << bad << "\n" << c.err;
+  }
+}
+
+TEST(CliDemo, KinematicsLeftUncorrectedAndFormScaled) {
+  const fs::path out = scratch_dir() / "demo_uncorrected";
+  fs::remove_all(out);
+  const CliRun a = run("demo -o '" + out.string() +
+                       "' --trials 100 --progress never --kinematics uncorrected "
+                       "--form-scale 5 --reference MZ --world-seed 3");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const std::string campaign = slurp(out / "world" / "campaign.json");
+  EXPECT_NE(campaign.find("\"kinematic_errors\": \"uncertainty_only\""), std::string::npos);
+  EXPECT_NE(campaign.find("\"reference_circle\": \"MZ\""), std::string::npos);
+  // Form ×5: the true roundness (truth.json) is about 5 × 0.14 µm.
+  const std::string truth = slurp(out / "world" / "truth.json");
+  EXPECT_NE(truth.find("\"roundness_um\": 0.6"), std::string::npos) << truth.substr(0, 400);
+  const std::string info = slurp(out / "run_info.json");
+  EXPECT_NE(info.find("\"kinematic_errors\": \"uncertainty_only\""), std::string::npos);
+}
+
 TEST(CliValidate, CampaignErrorsNameTheEntry) {
   const fs::path c = scratch_dir() / "bad_campaign.json";
   std::ofstream(c) << R"({"schema": "vcmm.campaign", "schema_version": 1, "model": ")" << kModel

@@ -480,6 +480,35 @@ TEST(Draw, SampleMeanAndCovarianceMatchTheModel) {
   EXPECT_NEAR(cov(a, b) / (sd[a] * sd[b]), 0.0, 5.0 / std::sqrt(n));  // independent functions
 }
 
+// Left uncorrected, only in the uncertainty: estimate 0, variance u² + m², covariances kept.
+TEST(Draw, UncorrectedModelHasZeroMeanAndTheWholeErrorAsVariance) {
+  const auto m = uncertain_model();
+  const auto u = m.uncorrected();
+  EXPECT_TRUE(u.mean().isZero(0.0));
+  for (Eigen::Index i = 0; i < m.parameter_count(); ++i) {
+    EXPECT_DOUBLE_EQ(u.covariance()(i, i),
+                     m.covariance()(i, i) + m.mean()[i] * m.mean()[i]) << i;
+    for (Eigen::Index j = 0; j < m.parameter_count(); ++j)
+      if (j != i) {
+        EXPECT_EQ(u.covariance()(i, j), m.covariance()(i, j)) << i << "," << j;
+      }
+  }
+  // The second coefficient of E_BX was known exactly (u = 0, m = 1e-7): it now varies.
+  const Eigen::Index b = m.parameter_offset(AxisError::E_BX) + 1;
+  EXPECT_EQ(m.covariance()(b, b), 0.0);
+  EXPECT_DOUBLE_EQ(u.covariance()(b, b), 1e-14);
+  SeededRandomSource rng(4);
+  double sum2 = 0.0;
+  for (int i = 0; i < 4000; ++i) {
+    const double v = u.draw(rng).parameters()[b];
+    sum2 += v * v;
+  }
+  // Sample second moment: relative standard error √(2/n) ≈ 2.2 %; 5 of them.
+  EXPECT_NEAR(sum2 / 4000.0 / 1e-14, 1.0, 5.0 * std::sqrt(2.0 / 4000.0));
+  // Correction with the uncorrected model removes nothing.
+  EXPECT_TRUE(u.nominal().parameters().isZero(0.0));
+}
+
 TEST(Draw, IntoReusedStorageGivesTheSameStream) {
   const auto m = uncertain_model();
   SeededRandomSource r1(9), r2(9);

@@ -1,11 +1,15 @@
+// cli/json_output.cpp — see json_output.h.
 #include "json_output.h"
+
+#include <cmath>
+#include <numbers>
 
 #include "vcmm/geometry/certificate.h"
 
 namespace vcmm::cli {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 namespace g = vcmm::geometry;
 
 void put_ron(json& j, const g::RoundnessParameters& r) {
@@ -32,6 +36,7 @@ void put_certificate(json& j, std::span<const g::Point2> profile, const Circle& 
 template <class Circle>
 json single_radius_json(std::span<const g::Point2> profile, const Circle& c) {
   json j;
+  j["defined"] = true;
   j["center"] = {c.center.x, c.center.y};
   j["radius"] = c.radius;
   put_ron(j, c.ron);
@@ -42,13 +47,21 @@ json single_radius_json(std::span<const g::Point2> profile, const Circle& c) {
 
 }  // namespace
 
-nlohmann::json to_json(std::span<const g::Point2> profile, const g::RoundnessEvaluation& e) {
+nlohmann::ordered_json to_json(std::span<const g::Point2> profile, const g::RoundnessEvaluation& e) {
+  constexpr double kDeg = 180.0 / std::numbers::pi;
   json out;
   out["n_points"] = e.n_points;
   out["filter"] = e.filter_cutoff_upr ? json(*e.filter_cutoff_upr) : json(nullptr);
+  out["coverage"] = {{"covered_deg", e.coverage.covered_rad * kDeg},
+                     {"largest_gap_deg", e.coverage.largest_gap_rad * kDeg},
+                     {"gap_start_deg", e.coverage.gap_start_rad * kDeg},
+                     {"gap_between_points", {e.coverage.gap_start_index,
+                                             e.coverage.gap_end_index}},
+                     {"closed", e.coverage.closed}};
   if (e.least_squares) {
     const auto& c = *e.least_squares;
     json j;
+    j["defined"] = true;
     j["center"] = {c.center.x, c.center.y};
     j["radius"] = c.radius;
     put_ron(j, c.ron);
@@ -62,6 +75,7 @@ nlohmann::json to_json(std::span<const g::Point2> profile, const g::RoundnessEva
   if (e.minimum_zone) {
     const auto& c = *e.minimum_zone;
     json j;
+    j["defined"] = true;
     j["center"] = {c.center.x, c.center.y};
     j["inner_radius"] = c.inner_radius;
     j["outer_radius"] = c.outer_radius;
@@ -73,7 +87,25 @@ nlohmann::json to_json(std::span<const g::Point2> profile, const g::RoundnessEva
   if (e.maximum_inscribed) out["MI"] = single_radius_json(profile, *e.maximum_inscribed);
   if (e.minimum_circumscribed)
     out["MC"] = single_radius_json(profile, *e.minimum_circumscribed);
+  for (const auto& [circle, reason] : e.undefined)
+    out[std::string(g::to_string(circle))] = {{"defined", false}, {"reason", reason}};
+  for (const auto& [circle, caution] : e.cautions)
+    out[std::string(g::to_string(circle))]["caution"] = caution;
   return out;
+}
+
+nlohmann::ordered_json harmonics_json(const g::ProfileHarmonics& h) {
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  json orders = json::array();
+  for (std::size_t k = 1; k <= h.max_order(); ++k) {
+    const double a = h.cos_mm(k), b = h.sin_mm(k);
+    orders.push_back({{"order", k},
+                      {"amplitude", std::hypot(a, b)},
+                      {"phase_deg", std::atan2(b, a) * kDeg}});
+  }
+  return {{"about", "LS circle of the evaluated profile"},
+          {"path", h.path() == g::HarmonicsPath::fft ? "fft" : "quadrature"},
+          {"orders", orders}};
 }
 
 }  // namespace vcmm::cli

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "commands.h"
+#include "vcmm/errormodel/atomic_file.h"
 #include "vcmm/uncertainty/errors.h"
 
 namespace vcmm::cli {
@@ -99,6 +100,9 @@ int report_current_exception(const char* command) {
     std::cerr << prefix << e.what() << "\n";
     return kFailure;
   } catch (const std::invalid_argument& e) {
+    std::cerr << prefix << e.what() << "\n";
+    return kInvalidInput;
+  } catch (const errormodel::OutputError& e) {  // a path the user gave cannot be written
     std::cerr << prefix << e.what() << "\n";
     return kInvalidInput;
   } catch (const std::exception& e) {

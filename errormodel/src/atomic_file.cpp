@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -22,15 +24,28 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   name += std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
   const fs::path tmp = dir / name;
   {
+    std::error_code ec;
+    const fs::file_status st = fs::status(target, ec);
+    if (!ec && fs::exists(st) && !fs::is_regular_file(st))
+      throw OutputError(path + ": cannot write the result there: it exists and is not a regular "
+                        "file (a directory or a device)");
+  }
+  {
+    errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path + ": cannot create the temporary file " + tmp.string());
+    if (!out) {
+      const int err = errno;
+      throw OutputError(path + ": cannot create the temporary file " + tmp.string() + ": " +
+                        (err ? std::strerror(err) : "unknown reason"));
+    }
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.flush();
     if (!out) {
+      const int err = errno;
       out.close();
       std::error_code ec;
       fs::remove(tmp, ec);
-      throw std::runtime_error(path + ": write failed");
+      throw OutputError(path + ": write failed: " + (err ? std::strerror(err) : "unknown reason"));
     }
   }
   std::error_code ec;
@@ -38,7 +53,7 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   if (ec) {
     std::error_code ignored;
     fs::remove(tmp, ignored);
-    throw std::runtime_error(path + ": cannot move the result into place: " + ec.message());
+    throw OutputError(path + ": cannot move the result into place: " + ec.message());
   }
 }
 

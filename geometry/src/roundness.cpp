@@ -2,13 +2,13 @@
 // reference circles on the (filtered) profile.
 //
 // Each public fitter validates its input (validate_profile, O(n)). Here the profile the
-// circles are fitted to is validated once: by the first requested fitter's public entry
-// point (so every failure is reported exactly as before, by the function that would have
-// thrown first), the others run on the same, already validated points through their
-// internal twins (internal/prevalidated.h). LS, MZ and MI share one precondition (≥ 3
-// finite points, not all collinear); MC's (≥ 2, not all identical) is weaker, so whichever
-// comes first covers the rest. The filter validates the raw profile and builds the filtered
-// one from it.
+// circles are fitted to is validated once, under the name of the first requested fitter,
+// and the circles are fitted through their internal twins (internal/prevalidated.h). LS,
+// MZ and MI share one precondition (≥ 3 finite points, not all collinear); MC's (≥ 2, not
+// all identical) is weaker, so whichever comes first covers the rest. The filter
+// validates the raw profile and builds the filtered one from it. An UndefinedResult of one
+// circle (MI of an arc, MZ of nearly straight data) is recorded, not thrown: the other
+// circles still come out.
 #include "vcmm/geometry/roundness.h"
 
 #include <span>
@@ -16,6 +16,44 @@
 #include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
+namespace {
+
+constexpr double kHalfTurn = 3.14159265358979323846;
+
+/// Runs `fit`; an UndefinedResult is recorded under `circle` instead of thrown.
+template <class Fit>
+void fit_or_record(RoundnessEvaluation& out, ReferenceCircle circle, Fit fit) {
+  try {
+    fit();
+  } catch (const UndefinedResult& e) {
+    out.undefined[circle] = e.what();
+  }
+}
+
+}  // namespace
+
+std::string_view to_string(ReferenceCircle circle) {
+  switch (circle) {
+    case ReferenceCircle::minimum_zone: return "MZ";
+    case ReferenceCircle::maximum_inscribed: return "MI";
+    case ReferenceCircle::least_squares: return "LS";
+    case ReferenceCircle::minimum_circumscribed: return "MC";
+  }
+  return "?";
+}
+
+std::optional<ReferenceCircle> reference_circle_from_string(std::string_view text) {
+  if (text == "MZ") return ReferenceCircle::minimum_zone;
+  if (text == "MI") return ReferenceCircle::maximum_inscribed;
+  if (text == "LS") return ReferenceCircle::least_squares;
+  if (text == "MC") return ReferenceCircle::minimum_circumscribed;
+  return std::nullopt;
+}
+
+std::size_t RoundnessEvaluation::defined_count() const {
+  return (least_squares ? 1u : 0u) + (minimum_zone ? 1u : 0u) + (maximum_inscribed ? 1u : 0u) +
+         (minimum_circumscribed ? 1u : 0u);
+}
 
 RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
                                        const RoundnessRequest& request) {
@@ -27,25 +65,47 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
     out.filtered_points = gaussian_filtered_profile(points, *request.filter_cutoff_upr).points;
     profile = out.filtered_points;
   }
+  // Validated once, by the first requested fitter's public entry point (so bad input is
+  // reported as before, by the function that would have thrown first); the others run on the
+  // same points through their internal twins. UndefinedResult is recorded per circle.
   bool validated = false;  // by a fitter with the (stricter) LS/MZ/MI precondition
   if (request.least_squares) {
     out.least_squares = least_squares_circle(profile);
     validated = true;
   }
   if (request.minimum_zone) {
-    out.minimum_zone =
-        validated ? internal::fit_minimum_zone_circle(profile, request.minimum_zone_options)
-                  : minimum_zone_circle(profile, request.minimum_zone_options);
+    if (!validated) validate_profile(profile, 3, "minimum_zone_circle");
     validated = true;
+    fit_or_record(out, ReferenceCircle::minimum_zone, [&] {
+      out.minimum_zone = internal::fit_minimum_zone_circle(profile, request.minimum_zone_options);
+    });
   }
   if (request.maximum_inscribed) {
-    out.maximum_inscribed = validated ? internal::fit_maximum_inscribed_circle(profile)
-                                      : maximum_inscribed_circle(profile);
+    if (!validated) validate_profile(profile, 3, "maximum_inscribed_circle");
     validated = true;
+    fit_or_record(out, ReferenceCircle::maximum_inscribed, [&] {
+      out.maximum_inscribed = internal::fit_maximum_inscribed_circle(profile);
+    });
   }
   if (request.minimum_circumscribed) {
-    out.minimum_circumscribed = validated ? internal::fit_minimum_circumscribed_circle(profile)
-                                          : minimum_circumscribed_circle(profile);
+    if (!validated) validate_profile(profile, 2, "minimum_circumscribed_circle", false);
+    fit_or_record(out, ReferenceCircle::minimum_circumscribed, [&] {
+      out.minimum_circumscribed = internal::fit_minimum_circumscribed_circle(profile);
+    });
+  }
+  // Coverage about the centre of the first circle found (the filtered points lie on the rays
+  // of the input points from the LS centre: the directions barely differ between centres).
+  std::optional<Point2> center;
+  if (out.least_squares) center = out.least_squares->center;
+  else if (out.minimum_zone) center = out.minimum_zone->center;
+  else if (out.maximum_inscribed) center = out.maximum_inscribed->center;
+  else if (out.minimum_circumscribed) center = out.minimum_circumscribed->center;
+  if (center) out.coverage = angular_coverage(profile, *center);
+  if (out.coverage.covered_rad < kHalfTurn) {
+    const std::string caution = "not a roundness reference on an arc < 180°";
+    if (out.maximum_inscribed) out.cautions[ReferenceCircle::maximum_inscribed] = caution;
+    if (out.minimum_circumscribed)
+      out.cautions[ReferenceCircle::minimum_circumscribed] = caution;
   }
   return out;
 }

@@ -134,24 +134,6 @@ void take_circle(const Circle& c, ReferenceRoundness& out, std::span<const Point
 
 }  // namespace
 
-std::string_view to_string(ReferenceCircle circle) {
-  switch (circle) {
-    case ReferenceCircle::minimum_zone: return "MZ";
-    case ReferenceCircle::maximum_inscribed: return "MI";
-    case ReferenceCircle::least_squares: return "LS";
-    case ReferenceCircle::minimum_circumscribed: return "MC";
-  }
-  return "?";
-}
-
-std::optional<ReferenceCircle> reference_circle_from_string(std::string_view text) {
-  if (text == "MZ") return ReferenceCircle::minimum_zone;
-  if (text == "MI") return ReferenceCircle::maximum_inscribed;
-  if (text == "LS") return ReferenceCircle::least_squares;
-  if (text == "MC") return ReferenceCircle::minimum_circumscribed;
-  return std::nullopt;
-}
-
 ReferenceRoundness reference_roundness(const RoundnessProfile& profile,
                                        const ReferenceRoundnessOptions& options) {
   constexpr const char* kCaller = "reference_roundness";

@@ -27,22 +27,16 @@
 #include "vcmm/geometry/certificate.h"
 #include "vcmm/geometry/point.h"
 #include "vcmm/geometry/roundness_parameters.h"
+#include "vcmm/geometry/roundness.h"
 #include "vcmm/geometry/roundness_profile.h"
 
 namespace vcmm::validation {
 
-/// The ISO 12181-1 reference circle a roundness value refers to (docs/notation.md).
-enum class ReferenceCircle {
-  minimum_zone,           ///< MZCI, "MZ"
-  maximum_inscribed,      ///< MICI, "MI"
-  least_squares,          ///< LSCI, "LS"
-  minimum_circumscribed,  ///< MCCI, "MC"
-};
-
-/// "MZ", "MI", "LS", "MC" (the campaign-file and CLI spelling).
-std::string_view to_string(ReferenceCircle circle);
-/// Parses "MZ", "MI", "LS", "MC" (exact, upper case); nullopt otherwise.
-std::optional<ReferenceCircle> reference_circle_from_string(std::string_view text);
+/// The ISO 12181-1 reference circle a roundness value refers to, its names "MZ", "MI", "LS",
+/// "MC" and their parser are vcmm::geometry's (vcmm/geometry/roundness.h).
+using geometry::ReferenceCircle;
+using geometry::reference_circle_from_string;
+using geometry::to_string;
 
 /// The roundness-meter profile, its CSV reader and its checks are vcmm::geometry's
 /// (vcmm/geometry/roundness_profile.h; file format in docs/formats.md), named here too so

@@ -1,0 +1,125 @@
+// Tests of vcmm/geometry/angular_coverage.h and the per-circle outcomes of evaluate_roundness on
+// partial arcs (vcmm/geometry/roundness.h).
+#include "vcmm/geometry/angular_coverage.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "vcmm/geometry/certificate.h"
+#include "vcmm/geometry/roundness.h"
+
+namespace vcmm::geometry {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::vector<Point2> arc(double span_deg, std::size_t n, double start_deg = 20.0) {
+  std::vector<Point2> p;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = (start_deg + span_deg * double(i) / double(n - 1)) * kPi / 180.0;
+    const double r = 10.0 + 0.001 * std::cos(3.0 * t);
+    p.push_back({5.0 + r * std::cos(t), -3.0 + r * std::sin(t)});
+  }
+  return p;
+}
+
+TEST(AngularCoverage, ArcSpanGapAndEndsByHand) {
+  const auto p = arc(100.0, 201);
+  const AngularCoverage c = angular_coverage(p, {5.0, -3.0});
+  EXPECT_NEAR(c.covered_rad * 180.0 / kPi, 100.0, 1e-9);
+  EXPECT_NEAR(c.largest_gap_rad * 180.0 / kPi, 260.0, 1e-9);
+  EXPECT_NEAR(c.gap_start_rad * 180.0 / kPi, 120.0, 1e-9);
+  EXPECT_EQ(c.gap_start_index, 200u);
+  EXPECT_EQ(c.gap_end_index, 0u);
+  EXPECT_FALSE(c.closed);
+}
+
+TEST(AngularCoverage, ClosedProfilesWithJitterOrAFewMissingPointsAreClosed) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
+  std::vector<Point2> p;
+  for (int i = 0; i < 360; ++i) {
+    if (i == 100 || i == 101) continue;  // two missing points: a gap of three steps
+    const double t = (i + jitter(rng)) * kPi / 180.0;
+    p.push_back({std::cos(t), std::sin(t)});
+  }
+  const AngularCoverage c = angular_coverage(p, {0.0, 0.0});
+  EXPECT_TRUE(c.closed);
+  EXPECT_GT(c.covered_rad, 2.0 * kPi - 4.0 * kPi / 180.0);
+  // A 10° hole makes it an arc.
+  std::vector<Point2> holed;
+  for (int i = 0; i < 360; ++i)
+    if (i < 200 || i > 210) holed.push_back({std::cos(i * kPi / 180.0), std::sin(i * kPi / 180.0)});
+  EXPECT_FALSE(angular_coverage(holed, {0.0, 0.0}).closed);
+}
+
+TEST(AngularCoverage, InvariantUnderPermutationAndRotation) {
+  auto p = arc(250.0, 500);
+  const AngularCoverage a = angular_coverage(p, {5.0, -3.0});
+  std::mt19937_64 rng(9);
+  std::shuffle(p.begin(), p.end(), rng);
+  const AngularCoverage b = angular_coverage(p, {5.0, -3.0});
+  EXPECT_EQ(a.covered_rad, b.covered_rad);
+  EXPECT_EQ(a.largest_gap_rad, b.largest_gap_rad);
+  const auto q = arc(250.0, 500, 200.0);  // the same arc turned by 180°: across ±π
+  EXPECT_NEAR(angular_coverage(q, {5.0, -3.0}).covered_rad, a.covered_rad, 1e-12);
+}
+
+TEST(AngularCoverage, PointsAtTheCentreAreLeftOutAndBadInputRefused) {
+  std::vector<Point2> p = {{1, 0}, {0, 0}, {-1, 0}, {0, 1}};
+  const AngularCoverage c = angular_coverage(p, {0, 0});
+  EXPECT_NEAR(c.largest_gap_rad, kPi, 1e-15);  // from (-1,0) round through -y to (1,0)
+  EXPECT_THROW(angular_coverage(std::vector<Point2>{{0, 0}, {1, 0}}, {0, 0}), InvalidInput);
+  EXPECT_THROW(angular_coverage(std::vector<Point2>{{1, 0}}, {0, 0}), InvalidInput);
+  EXPECT_THROW(angular_coverage(p, {NAN, 0}), InvalidInput);
+  p[2].x = INFINITY;
+  EXPECT_THROW(angular_coverage(p, {0, 0}), InvalidInput);
+}
+
+// The failing cases: a 90° and a 100° arc. LS and MZ are defined (MZ certified), MI is
+// undefined with its reason, MC is defined with the caution; no exception.
+TEST(EvaluateRoundnessPerCircle, PartialArcsKeepEveryDefinedCircle) {
+  for (double span : {90.0, 100.0, 170.0}) {
+    const auto p = arc(span, 200);
+    const RoundnessEvaluation e = evaluate_roundness(p, {});
+    EXPECT_TRUE(e.least_squares.has_value()) << span;
+    ASSERT_TRUE(e.minimum_zone.has_value()) << span;
+    EXPECT_TRUE(verify(p, *e.minimum_zone).valid) << span;
+    EXPECT_FALSE(e.maximum_inscribed.has_value()) << span;
+    ASSERT_EQ(e.undefined.count(ReferenceCircle::maximum_inscribed), 1u) << span;
+    EXPECT_NE(e.undefined.at(ReferenceCircle::maximum_inscribed).find("not defined"),
+              std::string::npos);
+    ASSERT_TRUE(e.minimum_circumscribed.has_value());
+    EXPECT_EQ(e.cautions.at(ReferenceCircle::minimum_circumscribed),
+              "not a roundness reference on an arc < 180°");
+    EXPECT_EQ(e.defined_count(), 3u);
+    EXPECT_FALSE(e.coverage.closed);
+    EXPECT_NEAR(e.coverage.covered_rad * 180.0 / kPi, span, 0.1) << span;
+  }
+  // 200°: MI exists; no caution (the arc covers more than half the circle).
+  const auto p = arc(200.0, 200);
+  const RoundnessEvaluation e = evaluate_roundness(p, {});
+  EXPECT_TRUE(e.maximum_inscribed.has_value());
+  EXPECT_TRUE(e.cautions.empty());
+  // Only MI asked on a short arc: nothing defined, no exception.
+  RoundnessRequest mi_only;
+  mi_only.least_squares = mi_only.minimum_zone = mi_only.minimum_circumscribed = false;
+  const RoundnessEvaluation none = evaluate_roundness(arc(90.0, 200), mi_only);
+  EXPECT_EQ(none.defined_count(), 0u);
+  EXPECT_EQ(none.undefined.size(), 1u);
+}
+
+TEST(ReferenceCircleNames, RoundTrip) {
+  for (auto c : {ReferenceCircle::minimum_zone, ReferenceCircle::maximum_inscribed,
+                 ReferenceCircle::least_squares, ReferenceCircle::minimum_circumscribed})
+    EXPECT_EQ(reference_circle_from_string(to_string(c)), c);
+  EXPECT_FALSE(reference_circle_from_string("mz").has_value());
+}
+
+}  // namespace
+}  // namespace vcmm::geometry

@@ -557,6 +557,40 @@ FilteredProfile filter_about(std::span<const Point2> points, double cutoff_upr, 
   return out;
 }
 
+/// filter_about, independent of the input order: when the points are not on an equiangular
+/// grid in the order given (the FFT path fails), the same points sorted by their direction
+/// about the centre are tried (ties: by x, then y, then input index), and the FFT result is
+/// used when that order is equiangular — a shuffled scan gives the scan's result (to
+/// rounding), not the nonuniform path's. Costs nothing on profiles given in angular order.
+FilteredProfile filter_any_order(std::span<const Point2> points, double cutoff_upr,
+                                 Point2 center, double radius, FilterPathChoice choice,
+                                 const char* caller) {
+  FilteredProfile out = filter_about(points, cutoff_upr, center, radius, choice, caller);
+  if (out.path == FilterPath::fft || choice == FilterPathChoice::nonuniform) return out;
+  const std::size_t n = points.size();
+  std::vector<double> angle(n);
+  for (std::size_t i = 0; i < n; ++i)
+    angle[i] = std::atan2(points[i].y - center.y, points[i].x - center.x);
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (angle[a] != angle[b]) return angle[a] < angle[b];
+    if (points[a].x != points[b].x) return points[a].x < points[b].x;
+    if (points[a].y != points[b].y) return points[a].y < points[b].y;
+    return a < b;
+  });
+  bool identity = true;
+  for (std::size_t j = 0; j < n && identity; ++j) identity = order[j] == j;
+  if (identity) return out;  // already in angular order: the spacing itself is uneven
+  std::vector<Point2> sorted(n);
+  for (std::size_t j = 0; j < n; ++j) sorted[j] = points[order[j]];
+  const FilteredProfile s = filter_about(sorted, cutoff_upr, center, radius, choice, caller);
+  if (s.path != FilterPath::fft) return out;
+  for (std::size_t j = 0; j < n; ++j) out.points[order[j]] = s.points[j];
+  out.path = FilterPath::fft;
+  return out;
+}
+
 }  // namespace
 
 std::vector<double> gaussian_filter_closed(std::span<const double> deviations,
@@ -585,7 +619,7 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
   constexpr const char* kCaller = "gaussian_filtered_profile";
   check_filter_input(points, cutoff_upr, kCaller);
   const LeastSquaresCircle ls = internal::fit_least_squares_circle(points);
-  return filter_about(points, cutoff_upr, ls.center, ls.radius, choice, kCaller);
+  return filter_any_order(points, cutoff_upr, ls.center, ls.radius, choice, kCaller);
 }
 
 FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
@@ -601,7 +635,7 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
        << "radius > 0; got centre (x = " << c.x << ", y = " << c.y << "), radius " << radius;
     throw InvalidInput(os.str());
   }
-  return filter_about(points, cutoff_upr, c, radius, choice, kCaller);
+  return filter_any_order(points, cutoff_upr, c, radius, choice, kCaller);
 }
 
 }  // namespace vcmm::geometry

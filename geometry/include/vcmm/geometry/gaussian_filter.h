@@ -47,6 +47,10 @@ struct FilteredProfile {
 /// FFT when the bound is not enough: gaussian_filter.cpp); other data by direct convolution
 /// with the wrapped weighting function (truncated at ±4 α λ_c) and trapezoidal quadrature weights,
 /// normalised so a constant deviation passes unchanged. A repeated closing point is detected.
+/// Input order does not matter: points that are not equiangular in the order given are tried
+/// in angular order about the LS centre (ties by x, y, index) before the nonuniform path is
+/// taken, so a shuffled scan is filtered exactly as the scan (to rounding of the LS fit's
+/// sums); the output keeps the input order.
 /// Preconditions (InvalidInput): ≥ 8 finite points, cut-off in (0, n/2], and the profile
 /// closed: it must go once round its centre with no angular gap wider than λ_c / 2.
 /// Complexity: O(n log n) (FFT) or O(n · m) with m points under ±4 α λ_c; 3600 points at

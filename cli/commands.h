@@ -13,14 +13,14 @@ enum ExitCode : int {
   kUsage = 2,          ///< bad command line
   kInvalidInput = 3,   ///< input file or values rejected (message names file/line/value)
   kUndefined = 4,      ///< valid input, but the quantity does not exist for it
+  kClaimFails = 5,     ///< `vcmm check`: the claimed circle is infeasible or not optimal
 };
-
-/// Option check: a finite number (CLI11's Range and PositiveNumber let "nan" through, and
-/// "inf" through an open upper end). Combine with a range: ->check(finite_number())->check(...).
-CLI::Validator finite_number();
 
 /// Registers `vcmm roundness`; the callback stores its exit code in `*exit_code`.
 void add_roundness_command(CLI::App& app, int* exit_code);
+
+/// Registers `vcmm check` (another program's reference circle against the exact one).
+void add_check_command(CLI::App& app, int* exit_code);
 
 /// Registers `vcmm simulate` (a ring-gauge measurement on the virtual CMM).
 void add_simulate_command(CLI::App& app, int* exit_code);

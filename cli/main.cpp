@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "vcmm 0.1.0");
   int exit_code = vcmm::cli::kOk;
   vcmm::cli::add_roundness_command(app, &exit_code);
+  vcmm::cli::add_check_command(app, &exit_code);
   vcmm::cli::add_simulate_command(app, &exit_code);
   vcmm::cli::add_uncertainty_command(app, &exit_code);
   vcmm::cli::add_validate_command(app, &exit_code);

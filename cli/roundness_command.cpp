@@ -20,6 +20,7 @@
 #include "atomic_file.h"
 #include "commands.h"
 #include "json_output.h"
+#include "option_values.h"
 #include "run_control.h"
 #include "vcmm/geometry/certificate.h"
 #include "vcmm/geometry/point_io.h"
@@ -218,13 +219,6 @@ json result_json(const FileResult& r) {
 
 // ---- batch CSV: one row per file -----------------------------------------------------------
 
-std::string csv_cell(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
-  return out + "\"";
-}
-
 std::string number(double v) { return fixed(v, 12); }
 
 constexpr const char* kCsvHeader =
@@ -278,11 +272,6 @@ std::string csv_row(const FileResult& r) {
 
 // ---- the command -----------------------------------------------------------------------------
 
-std::string upper(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
-
 /// FILE arguments, a directory replaced by its *.csv files (sorted by name).
 std::vector<std::string> expand_inputs(const std::vector<std::string>& args, bool& batch) {
   std::vector<std::string> files;
@@ -308,7 +297,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& args, boo
 int run_roundness(const RoundnessOptions& o) {
   Plan plan;
   try {
-    const std::string circle = upper(o.reference);
+    const std::string circle = upper_case(o.reference);
     const bool all = circle == "ALL";
     plan.request.least_squares = all || circle == "LS";
     plan.request.minimum_zone = all || circle == "MZ";
@@ -317,21 +306,9 @@ int run_roundness(const RoundnessOptions& o) {
     if (!all && !g::reference_circle_from_string(circle))
       throw std::invalid_argument("--reference must be LS, MZ, MI, MC or all; got '" +
                                   o.reference + "'");
-    if (!o.no_filter && o.filter != "none" && o.filter != "NONE") {
-      std::size_t used = 0;
-      double upr = 0.0;
-      try {
-        upr = std::stod(o.filter, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != o.filter.size() || !std::isfinite(upr) || upr <= 0.0)
-        throw std::invalid_argument("--filter-upr must be a positive number of UPR or 'none'; "
-                                    "got '" + o.filter + "'");
-      plan.request.filter_cutoff_upr = upr;
-    }
+    if (!o.no_filter) plan.request.filter_cutoff_upr = parse_filter_upr(o.filter);
     plan.harmonics = o.harmonics;
-    plan.to_mm = o.unit == "mm" ? 1.0 : o.unit == "um" ? 1e-3 : 25.4;
+    plan.to_mm = millimetres_per_unit(o.unit);
   } catch (const std::invalid_argument& ex) {
     std::cerr << "vcmm roundness: error: " << ex.what() << "\n";
     return kUsage;

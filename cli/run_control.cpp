@@ -1,5 +1,5 @@
-// cli/run_control.cpp — progress bars, Ctrl-C, the exception-to-exit-code mapping and the
-// shared option checks of the `vcmm` subcommands.
+// cli/run_control.cpp — progress bars, Ctrl-C and the exception-to-exit-code mapping of the
+// `vcmm` subcommands.
 #include "run_control.h"
 
 #include <unistd.h>
@@ -109,22 +109,6 @@ int report_current_exception(const char* command) {
     std::cerr << prefix << e.what() << "\n";
     return kFailure;
   }
-}
-
-CLI::Validator finite_number() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        try {
-          std::size_t used = 0;
-          const double v = std::stod(text, &used);
-          if (used != text.size()) return "'" + text + "' is not a number";
-          if (!std::isfinite(v)) return "'" + text + "' is not a finite number";
-        } catch (const std::exception&) {
-          return "'" + text + "' is not a number";
-        }
-        return {};
-      },
-      "FINITE");
 }
 
 }  // namespace vcmm::cli

@@ -14,6 +14,7 @@
 
 #include "atomic_file.h"
 #include "commands.h"
+#include "option_values.h"
 #include "run_control.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/measurement.h"
@@ -52,24 +53,9 @@ int run_uncertainty(const UncertaintyOptions& o) {
   va::RingUncertaintyOptions options;
   ProgressMode progress_mode;
   try {
-    std::string circle = o.reference;  // IsMember-checked: MZ, MI, LS, MC in either case
-    for (char& c : circle) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    options.evaluation.reference = *va::reference_circle_from_string(circle);
-    if (o.filter == "none") {
-      options.evaluation.filter_cutoff_upr.reset();
-    } else {
-      std::size_t used = 0;
-      double upr = 0.0;
-      try {
-        upr = std::stod(o.filter, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != o.filter.size() || !std::isfinite(upr) || upr <= 0.0)
-        throw std::invalid_argument("--filter-upr must be a positive number of UPR or 'none'; "
-                                    "got '" + o.filter + "'");
-      options.evaluation.filter_cutoff_upr = upr;
-    }
+    // IsMember-checked: MZ, MI, LS, MC in any case.
+    options.evaluation.reference = *va::reference_circle_from_string(upper_case(o.reference));
+    options.evaluation.filter_cutoff_upr = parse_filter_upr(o.filter);
     if (o.trials > 0 && o.adaptive_tolerance_um > 0.0)
       throw std::invalid_argument("--trials and --adaptive exclude each other");
     if (!(o.coverage > 0.0 && o.coverage < 1.0))
@@ -150,7 +136,7 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
       ->default_val(0);
   cmd->add_option("--reference", opts->reference, "reference circle of RONt: MZ, MI, LS or MC")
-      ->check(CLI::IsMember({"MZ", "MI", "LS", "MC", "mz", "mi", "ls", "mc"}))
+      ->check(CLI::IsMember({"MZ", "MI", "LS", "MC"}, CLI::ignore_case))
       ->default_val("MZ");
   cmd->add_option("--filter-upr", opts->filter,
                   "ISO 16610-21 Gaussian cut-off (UPR) before the roundness, or 'none'")

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "commands.h"
+#include "option_values.h"
 #include "run_control.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/validation/campaign.h"
@@ -27,11 +28,6 @@ namespace vcmm::cli {
 namespace {
 
 namespace va = vcmm::validation;
-
-std::string upper(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
 
 /// Shortest round-trip decimal of a double (as in the library's files).
 std::string internal_shortest(double v) {
@@ -166,7 +162,7 @@ int run_demo(const CampaignCliOptions& o) {
     va::EvaluationSettings ev;
     ev.trials = o.trials;
     ev.seed = o.seed;
-    ev.reference_circle = *va::reference_circle_from_string(upper(o.reference));
+    ev.reference_circle = *va::reference_circle_from_string(upper_case(o.reference));
     ev.kinematics_corrected = o.kinematics == "corrected";
     ev.bias_treatment = *va::roundness_bias_treatment_from_string(o.bias_treatment);
     const std::filesystem::path world_dir = std::filesystem::path(o.output) / "world";
@@ -180,7 +176,7 @@ int run_demo(const CampaignCliOptions& o) {
         {{"command", "vcmm demo" + (o.model.empty() ? std::string() : " --model " + o.model) +
                          " -o " + o.output + " --trials " + std::to_string(o.trials) +
                          " --seed " + std::to_string(o.seed) + " --world-seed " +
-                         std::to_string(o.world_seed) + " --reference " + upper(o.reference) +
+                         std::to_string(o.world_seed) + " --reference " + upper_case(o.reference) +
                          " --form-scale " + internal_shortest(o.form_scale) + " --kinematics " +
                          o.kinematics + " --bias-treatment " + o.bias_treatment +
                          (o.denoised ? " --denoised" : "")},

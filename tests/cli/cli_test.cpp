@@ -267,3 +267,59 @@ TEST(CliRoundness, OutputIntoAMissingDirectoryOrOverADeviceIsAUserError) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CliCheck, ExactClaimIsOptimalPerturbedIsNotAndBatchGivesRows) {
+  // The exact MZ centre, as `vcmm roundness --json` prints it (17 significant digits).
+  const CliRun mz = run("roundness '" + kScan + "' --json --reference MZ");
+  ASSERT_EQ(mz.exit_code, 0) << mz.err;
+  const auto j = nlohmann::json::parse(mz.out);
+  char center[128];
+  std::snprintf(center, sizeof center, "%.17g,%.17g", j["MZ"]["center"][0].get<double>(),
+                j["MZ"]["center"][1].get<double>());
+  const CliRun ok = run("check '" + kScan + "' --reference mz --center " + center + " --json");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err << ok.out;
+  const auto k = nlohmann::json::parse(ok.out);
+  EXPECT_EQ(k["verdict"], "optimal");
+  EXPECT_TRUE(k["exact"]["certified"].get<bool>());
+  EXPECT_EQ(k["exact"]["contacts"].size(), 4u);
+  // 1 µm off in x: feasible (radii derived), not optimal, exit 5, the excess reported.
+  std::snprintf(center, sizeof center, "%.17g,%.17g", j["MZ"]["center"][0].get<double>() + 1e-3,
+                j["MZ"]["center"][1].get<double>());
+  const CliRun off = run("check '" + kScan + "' --reference MZ --center " + center);
+  EXPECT_EQ(off.exit_code, 5) << off.err;
+  EXPECT_NE(off.out.find("verdict          not_optimal"), std::string::npos) << off.out;
+  // Radii too tight: infeasible, the violating points named.
+  const CliRun tight = run("check '" + kScan + "' --reference MZ --center " + center +
+                           " --radii 85.49995,85.50005 --json");
+  EXPECT_EQ(tight.exit_code, 5);
+  const auto t = nlohmann::json::parse(tight.out);
+  EXPECT_EQ(t["verdict"], "infeasible");
+  EXPECT_GT(t["violations"].get<int>(), 0);
+  // A claims file: one row per claim, relative paths, a broken line-up is an error row.
+  const fs::path dir = scratch_dir() / "claims";
+  fs::create_directories(dir);
+  fs::copy_file(kScan, dir / "ring.csv", fs::copy_options::overwrite_existing);
+  std::ofstream(dir / "claims.csv") << "file,reference,center_x,center_y,radius,outer_radius\n"
+                                    << "ring.csv,MZ," << center << ",,\n"
+                                    << "missing.csv,MI,0,0,,\n"
+                                    << "ring.csv,MC,412.5,305.25,85.6,\n";
+  const CliRun batch = run("check --claims '" + (dir / "claims.csv").string() + "'");
+  EXPECT_EQ(batch.exit_code, 3) << batch.err;  // the missing file is the most severe
+  std::istringstream lines(batch.out);
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(lines, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 4u) << batch.out;
+  EXPECT_NE(rows[1].find(",MZ,not_optimal,true,false,"), std::string::npos) << rows[1];
+  EXPECT_NE(rows[2].find(",MI,error,"), std::string::npos) << rows[2];
+  EXPECT_NE(rows[3].find(",MC,not_optimal,true,false,"), std::string::npos) << rows[3];
+  // Usage errors.
+  EXPECT_EQ(run("check '" + kScan + "' --reference XX --center 1,2").exit_code, 2);
+  EXPECT_EQ(run("check '" + kScan + "' --reference MZ --center 1").exit_code, 2);
+  EXPECT_EQ(run("check '" + kScan + "' --reference MZ --center 1,2 --radii 85").exit_code, 2);
+  EXPECT_EQ(run("check '" + kScan + "' --reference MI --center nan,2").exit_code, 2);
+}
+
+}  // namespace

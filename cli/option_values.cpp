@@ -1,0 +1,64 @@
+// cli/option_values.cpp — see option_values.h.
+#include "option_values.h"
+
+#include <cctype>
+#include <cmath>
+#include <stdexcept>
+
+namespace vcmm::cli {
+
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const double v = std::stod(text, &used);
+          if (used != text.size()) return "'" + text + "' is not a number";
+          if (!std::isfinite(v)) return "'" + text + "' is not a finite number";
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        return {};
+      },
+      "FINITE");
+}
+
+std::optional<double> parse_filter_upr(const std::string& text) {
+  if (upper_case(text) == "NONE") return std::nullopt;
+  std::size_t used = 0;
+  double upr = 0.0;
+  try {
+    upr = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(upr) || upr <= 0.0)
+    throw std::invalid_argument("--filter-upr must be a positive number of UPR or 'none'; got '" +
+                                text + "'");
+  return upr;
+}
+
+double millimetres_per_unit(const std::string& unit) {
+  if (unit == "mm") return 1.0;
+  if (unit == "um") return 1e-3;
+  if (unit == "in") return 25.4;
+  throw std::invalid_argument("--unit must be mm, um or in; got '" + unit + "'");
+}
+
+std::string upper_case(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::string csv_cell(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += "\"\"";
+    else if (c == '\n' || c == '\r') out += ' ';
+    else out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace vcmm::cli

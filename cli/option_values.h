@@ -1,0 +1,31 @@
+// cli/option_values.h — the option-value parsers and text helpers every `vcmm` subcommand
+// shares (one spelling rule for option values: STYLE.md, "Where things live").
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+
+namespace vcmm::cli {
+
+/// Option check: a finite number (CLI11's Range and PositiveNumber let "nan" through, and
+/// "inf" through an open upper end). Combine with a range: ->check(finite_number())->check(...).
+CLI::Validator finite_number();
+
+/// `--filter-upr` values: a finite number of UPR > 0, or "none" (any case) for unfiltered.
+/// Throws std::invalid_argument with the option and the value otherwise.
+std::optional<double> parse_filter_upr(const std::string& text);
+
+/// `--unit` values of input coordinates: "mm" → 1, "um" → 1e-3, "in" → 25.4 (mm per unit).
+/// Throws std::invalid_argument otherwise.
+double millimetres_per_unit(const std::string& unit);
+
+/// ASCII upper case (reference-circle names are accepted in any case).
+std::string upper_case(std::string text);
+
+/// A CSV field: quoted (with doubled quotes) when it holds a comma, a quote or a line break;
+/// line breaks become spaces.
+std::string csv_cell(const std::string& text);
+
+}  // namespace vcmm::cli

@@ -52,6 +52,10 @@ nlohmann::ordered_json to_json(std::span<const g::Point2> profile, const g::Roun
   json out;
   out["n_points"] = e.n_points;
   out["filter"] = e.filter_cutoff_upr ? json(*e.filter_cutoff_upr) : json(nullptr);
+  if (e.filter_path)
+    out["filter_path"] = *e.filter_path == g::FilterPath::fft          ? "fft"
+                         : *e.filter_path == g::FilterPath::nonuniform ? "nonuniform"
+                                                                       : "open_profile";
   out["coverage"] = {{"covered_deg", e.coverage.covered_rad * kDeg},
                      {"largest_gap_deg", e.coverage.largest_gap_rad * kDeg},
                      {"gap_start_deg", e.coverage.gap_start_rad * kDeg},

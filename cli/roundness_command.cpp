@@ -125,7 +125,9 @@ std::string format_table(const FileResult& r) {
   char buf[512];
   os << "vcmm roundness: " << r.file << " — " << e.n_points << " points, ";
   if (e.filter_cutoff_upr)
-    os << "Gaussian filter " << *e.filter_cutoff_upr << " UPR (ISO 16610-21)\n";
+    os << "Gaussian filter " << *e.filter_cutoff_upr << " UPR (ISO 16610-21"
+       << (e.filter_path == g::FilterPath::open_profile ? ", open profile: a partial arc" : "")
+       << ")\n";
   else
     os << "unfiltered\n";
   std::snprintf(buf, sizeof buf, "coverage %.2f° (largest gap %.2f°)%s\n",

@@ -62,7 +62,16 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
   out.filter_cutoff_upr = request.filter_cutoff_upr;
   std::span<const Point2> profile = points;
   if (request.filter_cutoff_upr) {
-    out.filtered_points = gaussian_filtered_profile(points, *request.filter_cutoff_upr).points;
+    // A closed profile takes the closed filter; an arc (a gap wider than λc/2 = π/f_c, which
+    // the closed filter refuses) the open-profile filter.
+    validate_profile(points, 8, "gaussian_filtered_profile");
+    const AngularCoverage raw =
+        angular_coverage(points, internal::fit_least_squares_circle(points).center);
+    FilteredProfile f = raw.largest_gap_rad > kHalfTurn / *request.filter_cutoff_upr
+                            ? gaussian_filtered_open_profile(points, *request.filter_cutoff_upr)
+                            : gaussian_filtered_profile(points, *request.filter_cutoff_upr);
+    out.filter_path = f.path;
+    out.filtered_points = std::move(f.points);
     profile = out.filtered_points;
   }
   // Validated once, by the first requested fitter's public entry point (so bad input is

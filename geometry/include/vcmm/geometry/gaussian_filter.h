@@ -20,8 +20,9 @@ inline constexpr double kStandardCutoffsUpr[] = {15.0, 50.0, 150.0, 500.0, 1500.
 
 /// How a profile was filtered.
 enum class FilterPath {
-  fft,          ///< equiangular samples in angular order: exact per-harmonic transmission
-  nonuniform,   ///< uneven spacing: weighted convolution with quadrature weights
+  fft,           ///< equiangular samples in angular order: exact per-harmonic transmission
+  nonuniform,    ///< uneven spacing: weighted convolution with quadrature weights
+  open_profile,  ///< a partial arc: gaussian_filtered_open_profile
 };
 
 /// Which path gaussian_filtered_profile may take.
@@ -71,6 +72,19 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
 FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
                                           const LeastSquaresCircle& least_squares,
                                           FilterPathChoice choice = FilterPathChoice::automatic);
+
+/// The Gaussian filter of an open profile (ISO 16610-21, clause 4): a partial arc, taken in
+/// its angle about the LS centre from one end to the other (the ends: either side of the
+/// largest angular gap). Interior: the weighted mean with the Gaussian weighting function and
+/// trapezoidal quadrature weights, truncated at ±4 α λ_c. End effects: the mean line is the
+/// value of the Gaussian-weighted least-squares line through the window, which keeps the
+/// weighting's zeroth and first moments where the window is cut by an end (constant and
+/// linear components pass unchanged up to the ends; in the interior it equals the weighted
+/// mean). Output: same count and order, each point on its ray from the LS centre; path
+/// open_profile. Preconditions (InvalidInput): ≥ 8 finite points not all collinear, a finite
+/// cut-off > 0, no angular gap inside the arc wider than λ_c/2. O(n log n + n·m), m the
+/// points within ±4 α λ_c (gaussian_filter_open.cpp).
+FilteredProfile gaussian_filtered_open_profile(std::span<const Point2> points, double cutoff_upr);
 
 /// Filters an equiangular closed sequence of radial deviations (any unit) by the exact
 /// transmission H(k). Precondition: ≥ 2 finite values, cut-off > 0 (InvalidInput).

@@ -49,6 +49,9 @@ struct RoundnessEvaluation {
   /// The filtered profile the circles were fitted to (empty when unfiltered); certificates
   /// refer to these points.
   std::vector<Point2> filtered_points;
+  /// How it was filtered: fft or nonuniform (closed profile), open_profile (a partial arc:
+  /// an angular gap wider than λc/2; gaussian_filtered_open_profile).
+  std::optional<FilterPath> filter_path;
   /// Coverage of the (filtered) profile about the centre of the first defined circle (LS,
   /// MZ, MI, MC in this order): a partial arc when not closed. Left at its defaults (all 0,
   /// closed) when no requested circle is defined.
@@ -72,10 +75,11 @@ struct RoundnessEvaluation {
 
 /// Filters (if asked) and fits each requested circle to the (filtered) profile, on its own:
 /// an UndefinedResult of one circle is recorded in `undefined` and the others are still
-/// evaluated (no exception for an undefined circle). Contact indices refer to the input
-/// order. Throws InvalidInput for input no circle can be fitted to (as the fitters and the
-/// filter: too few, non-finite, identical or collinear points; a profile that is not closed
-/// when a filter is asked). O(n log n) plus the fitters.
+/// evaluated (no exception for an undefined circle). With a filter, a closed profile takes the
+/// closed filter and a partial arc (a gap wider than λc/2) the open-profile one. Contact
+/// indices refer to the input order. Throws InvalidInput for input no circle can be fitted to
+/// (as the fitters and the filters: too few, non-finite, identical or collinear points; an
+/// arc with an inner gap wider than λc/2). O(n log n) plus the fitters.
 RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
                                        const RoundnessRequest& request);
 

@@ -5,6 +5,8 @@
 // value and the rule. Unknown keys are errors too: a misspelt key must not silently fall back to zero.
 #include "vcmm/errormodel/digital_model.h"
 
+#include "vcmm/errormodel/json_input.h"
+
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -111,13 +113,6 @@ class Reader {
  private:
   std::string source_;
 };
-
-std::size_t line_of_byte(std::string_view text, std::size_t byte) {
-  std::size_t line = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i)
-    if (text[i] == '\n') ++line;
-  return line;
-}
 
 RoughnessModel read_roughness(const Reader& r, const json& root) {
   const json& s = r.object(root, "roughness", "roughness");
@@ -245,13 +240,27 @@ void validate_digital_model(const DigitalModel& m) {
 
 DigitalModel parse_digital_model(std::string_view text, const std::string& source) {
   const Reader r(source);
-  json root;
-  try {
-    root = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    throw InvalidParameter("", source + ":" + std::to_string(line_of_byte(text, e.byte)) +
-                                   ": not valid JSON (" + e.what() + ")");
+  // The SAX guard first (json_input.h): syntax, numbers beyond the double range, repeated
+  // keys and excessive nesting are reported with the line and the key path.
+  const JsonInputCheck check = check_json_input(text);
+  switch (check.problem) {
+    case JsonInputCheck::Problem::none:
+      break;
+    case JsonInputCheck::Problem::duplicate_key:
+      throw InvalidParameter(check.path, source + ": " +
+                                             (check.path.empty() ? "" : check.path + ": ") +
+                                             "key \"" + check.message +
+                                             "\" appears twice in one object (JSON would keep "
+                                             "only one)");
+    case JsonInputCheck::Problem::syntax:  // the line says where; the key path would not
+      throw InvalidParameter("", source + ":" + std::to_string(check.line) +
+                                     ": not valid JSON: " + check.message);
+    case JsonInputCheck::Problem::too_deep:
+      throw InvalidParameter(check.path, source + ":" + std::to_string(check.line) +
+                                             ": not valid JSON here: " + check.message +
+                                             (check.path.empty() ? "" : " (at " + check.path + ")"));
   }
+  const json root = json::parse(text.begin(), text.end());
   if (!root.is_object()) r.fail("", "the file must hold one JSON object", root);
   r.only_keys(root,
               {"schema", "schema_version", "description", "roughness", "temperature", "kinematics",

@@ -578,6 +578,10 @@ TEST_F(CampaignTest, SyntaxErrorsAndRepeatedKeysGiveLineAndPath) {
   // Comments are not JSON.
   EXPECT_NE(failure_of_text("// campaign\n" + example().dump()).message.find(":1: invalid JSON"),
             std::string::npos);
+  // A nesting bomb is refused by the shared guard before any recursive walk (issue 12).
+  const Failure bomb = failure_of_text("{\"measurements\": " + std::string(100000, '[') + "}");
+  EXPECT_NE(bomb.message.find("nesting deeper than 64 levels"), std::string::npos)
+      << bomb.message;
 }
 
 TEST_F(CampaignTest, ErrorsAreTheLibrarysInvalidInput) {

@@ -1,10 +1,10 @@
 // campaign.cpp — the campaign file, schema "vcmm.campaign" version 1 (vcmm/validation/
 // campaign.h, docs/validation.md "The campaign file").
 //
-// Reading is two passes over the text. A SAX pass (PathTracker) follows the JSON path of
-// every token: it finds keys repeated within an object (nlohmann's DOM would keep the last one
-// silently) and, on a syntax error or a number too large for a double, says where it happened
-// (line and path). Then the DOM is walked by Reader, which checks every entry where it is read
+// Reading is two passes over the text. A SAX pass (errormodel::check_json_input) follows the
+// JSON path of every token: it finds keys repeated within an object (nlohmann's DOM would keep
+// the last one silently), nesting deeper than any campaign needs, and, on a syntax error or a
+// number too large for a double, says where it happened (line and path). Then the DOM is walked by Reader, which checks every entry where it is read
 // and throws CampaignError at the first broken rule, with the source, the measurement (index
 // and, once read, id) and the JSON path. Unknown keys are errors; when an unknown key differs
 // from an expected one only in its unit suffix ("value_mm" for "value_um") the message names
@@ -14,6 +14,8 @@
 // output is the shortest text that reads back to the same double), then reads it back with
 // the same Reader (files not checked), so the writer can never emit a file the reader refuses.
 #include "vcmm/validation/campaign.h"
+
+#include "vcmm/errormodel/json_input.h"
 
 #include <cmath>
 #include <fstream>
@@ -72,110 +74,6 @@ std::optional<std::size_t> measurement_index_of(const std::string& path) {
   if (i >= path.size() || path[i] != ']') return std::nullopt;
   return value;
 }
-
-std::size_t line_of_byte(std::string_view text, std::size_t byte) {
-  std::size_t line = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i)
-    if (text[i] == '\n') ++line;
-  return line;
-}
-
-// ---- pass 1: JSON paths of tokens, repeated keys, where a syntax error is --------------------
-
-class PathTracker final : public nlohmann::json_sax<json> {
- public:
-  struct Frame {
-    bool is_array = false;
-    std::size_t count = 0;  // arrays: elements started so far
-    std::string key;        // objects: the current key
-    std::set<std::string> keys;
-  };
-
-  // The JSON path through the first `depth` frames: array frames give "[i]" (the element
-  // being parsed; `pending`: the top array's next element, whose first token failed to parse),
-  // object frames their current key.
-  std::string path(std::size_t depth, bool pending) const {
-    std::string out;
-    for (std::size_t f = 0; f < depth && f < frames_.size(); ++f) {
-      const Frame& fr = frames_[f];
-      if (fr.is_array) {
-        const bool top = f + 1 == frames_.size();
-        const std::size_t i = top && pending ? fr.count : (fr.count ? fr.count - 1 : 0);
-        // Appended piecewise: "[" + to_string(i) + "]" trips a false GCC 12 -Wrestrict at -O3.
-        out += '[';
-        out += std::to_string(i);
-        out += ']';
-      } else {
-        if (!out.empty()) out += '.';
-        out += fr.key;
-      }
-    }
-    return out;
-  }
-
-  bool null() override { return value(); }
-  bool boolean(bool) override { return value(); }
-  bool number_integer(number_integer_t) override { return value(); }
-  bool number_unsigned(number_unsigned_t) override { return value(); }
-  bool number_float(number_float_t, const string_t&) override { return value(); }
-  bool string(string_t& s) override {
-    value();
-    // measurements[i].id: remembered so that later errors can name the entry.
-    if (frames_.size() == 3 && !frames_[0].is_array && frames_[0].key == "measurements" &&
-        frames_[1].is_array && !frames_[2].is_array && frames_[2].key == "id")
-      ids_[frames_[1].count - 1] = s;
-    return true;
-  }
-  bool binary(binary_t&) override { return value(); }
-  bool start_object(std::size_t) override {
-    value();
-    frames_.push_back({});
-    return true;
-  }
-  bool key(string_t& k) override {
-    Frame& fr = frames_.back();
-    if (!fr.keys.insert(k).second && !duplicate_)
-      duplicate_ = std::make_pair(path(frames_.size() - 1, false), k);
-    fr.key = k;
-    return true;
-  }
-  bool end_object() override {
-    frames_.pop_back();
-    return true;
-  }
-  bool start_array(std::size_t) override {
-    value();
-    frames_.push_back({true, 0, {}, {}});
-    return true;
-  }
-  bool end_array() override {
-    frames_.pop_back();
-    return true;
-  }
-  bool parse_error(std::size_t position, const std::string&,
-                   const nlohmann::detail::exception& ex) override {
-    error_position_ = position;
-    error_path_ = path(frames_.size(), !frames_.empty() && frames_.back().is_array);
-    std::string what = ex.what();
-    if (const auto close = what.find("] "); what.rfind("[json.exception", 0) == 0 &&
-                                            close != std::string::npos)
-      what = what.substr(close + 2);
-    error_message_ = what;
-    return false;
-  }
-
-  std::optional<std::size_t> error_position_;
-  std::string error_path_, error_message_;
-  std::optional<std::pair<std::string, std::string>> duplicate_;  // object path, key
-  std::map<std::size_t, std::string> ids_;
-
- private:
-  bool value() {
-    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().count;
-    return true;
-  }
-  std::vector<Frame> frames_;
-};
 
 // ---- pass 2: the schema --------------------------------------------------------------------
 
@@ -601,26 +499,26 @@ class Reader {
 
 Campaign parse_document(std::string_view text, const std::string& source, const fs::path& base,
                         bool check_files) {
-  PathTracker tracker;
-  json::sax_parse(text, &tracker);
-  if (tracker.error_position_) {
-    const std::string& path = tracker.error_path_;
-    const auto index = measurement_index_of(path);
+  const errormodel::JsonInputCheck check = errormodel::check_json_input(text);
+  if (!check.ok()) {
+    const auto index = measurement_index_of(check.path);
     std::string id;
     if (index)
-      if (const auto it = tracker.ids_.find(*index); it != tracker.ids_.end()) id = it->second;
-    throw_error(
-        source, index, id, path, "invalid JSON: " + tracker.error_message_,
-        line_of_byte(text, *tracker.error_position_ > 0 ? *tracker.error_position_ - 1 : 0));
-  }
-  if (tracker.duplicate_) {
-    const auto& [path, key] = *tracker.duplicate_;
-    const auto index = measurement_index_of(path);
-    std::string id;
-    if (index)
-      if (const auto it = tracker.ids_.find(*index); it != tracker.ids_.end()) id = it->second;
-    throw_error(source, index, id, path,
-                "key \"" + key + "\" appears twice in one object (JSON would keep only one)");
+      if (const auto it = check.ids.find("measurements[" + std::to_string(*index) + "]");
+          it != check.ids.end())
+        id = it->second;
+    using Problem = errormodel::JsonInputCheck::Problem;
+    switch (check.problem) {
+      case Problem::syntax:
+        throw_error(source, index, id, check.path, "invalid JSON: " + check.message, check.line);
+      case Problem::duplicate_key:
+        throw_error(source, index, id, check.path,
+                    "key \"" + check.message +
+                        "\" appears twice in one object (JSON would keep only one)");
+      case Problem::too_deep:
+      case Problem::none:
+        throw_error(source, index, id, check.path, "invalid JSON: " + check.message, check.line);
+    }
   }
   const json root = json::parse(text);
   Reader reader(source, base, check_files);

@@ -1,6 +1,7 @@
 // cli/option_values.cpp — see option_values.h.
 #include "option_values.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <stdexcept>
@@ -21,6 +22,21 @@ CLI::Validator finite_number() {
         return {};
       },
       "FINITE");
+}
+
+CLI::Validator unsigned_64() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        static const std::string kMax = "18446744073709551615";
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        std::string trimmed = text.substr(std::min(text.find_first_not_of('0'), text.size()));
+        if (trimmed.empty()) trimmed = "0";
+        if (!digits || trimmed.size() > kMax.size() ||
+            (trimmed.size() == kMax.size() && trimmed > kMax))
+          return "'" + text + "' is not an unsigned 64-bit integer (0 to " + kMax + ")";
+        return {};
+      },
+      "UINT64");
 }
 
 std::optional<double> parse_filter_upr(const std::string& text) {

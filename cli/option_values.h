@@ -13,6 +13,10 @@ namespace vcmm::cli {
 /// "inf" through an open upper end). Combine with a range: ->check(finite_number())->check(...).
 CLI::Validator finite_number();
 
+/// Option check: an unsigned 64-bit integer written in decimal digits (0 … 18446744073709551615).
+/// CLI11 alone wraps "-1" and saturates 2⁶⁴ to 2⁶⁴ − 1; seeds must be what they say.
+CLI::Validator unsigned_64();
+
 /// `--filter-upr` values: a finite number of UPR > 0, or "none" (any case) for unfiltered.
 /// Throws std::invalid_argument with the option and the value otherwise.
 std::optional<double> parse_filter_upr(const std::string& text);

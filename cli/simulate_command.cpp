@@ -16,6 +16,7 @@
 
 #include "atomic_file.h"
 #include "commands.h"
+#include "option_values.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/measurement.h"
 #include "vcmm/errormodel/random_source.h"
@@ -184,6 +185,7 @@ void add_simulate_command(CLI::App& app, int* exit_code) {
                   "tip centre relative to the ram reference point X,Y,Z (mm)")
       ->default_val("0,0,0");
   cmd->add_option("--seed", opts->seed, "seed of the random draw (reproducible)")
+      ->check(unsigned_64())
       ->default_val(1);
   cmd->add_option("--only", opts->only,
                   "keep only this error source (repeatable): roughness, temperature, "

@@ -132,6 +132,7 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
       ->check(CLI::PositiveNumber);
   trials->excludes(adaptive);
   cmd->add_option("--seed", opts->seed, "seed: fixes every number, whatever the thread count")
+      ->check(unsigned_64())
       ->default_val(1);
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
       ->default_val(0);

@@ -218,8 +218,11 @@ void add_demo_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--trials", o->trials, "Monte Carlo trials per measurement")
       ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}))
       ->default_val(10000);
-  cmd->add_option("--seed", o->seed, "seed of the Monte Carlo runs")->default_val(1);
+  cmd->add_option("--seed", o->seed, "seed of the Monte Carlo runs")
+      ->check(unsigned_64())
+      ->default_val(1);
   cmd->add_option("--world-seed", o->world_seed, "seed of the synthetic world")
+      ->check(unsigned_64())
       ->default_val(va::DemoWorldOptions{}.seed);
   cmd->add_option("--reference", o->reference,
                   "reference circle of RONt: MI (the seed study's), MZ, LS or MC")

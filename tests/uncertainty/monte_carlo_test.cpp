@@ -437,7 +437,9 @@ TEST(AdaptiveMonteCarlo, NeverStopsBeforeTwoBlocks) {
 
 TEST(AdaptiveMonteCarlo, NotConvergedWhenMaxTrialsIsReached) {
   AdaptiveOptions a;
-  a.numerical_tolerance = 1e-9;
+  // Out of reach within 5 blocks (2s ≈ 0.18 after 3 blocks, ≈ 0.14 after 5) but not hopeless:
+  // the projection after 3 blocks, 3·(0.18/0.1)²·400 ≈ 4 000 trials, is below 4 × max_trials.
+  a.numerical_tolerance = 0.1;
   a.block_size = 400;
   a.max_trials = 5 * 400 + 17;  // room for 5 whole blocks only
   const MonteCarloResult r = run_adaptive_monte_carlo(kTwoScales, 2, a, options_with(0, 2));
@@ -525,6 +527,44 @@ TEST(AdaptiveMonteCarlo, BadInput) {
   bad_p.coverage_probability = 1.0;
   expect_invalid([&] { run_adaptive_monte_carlo(kTwoScales, 2, a, bad_p); }, {"run_adaptive_monte_carlo", "coverage_probability"});
   expect_invalid([&] { run_adaptive_monte_carlo(ExperimentFactory{}, 2, a, o); }, {"factory must not be empty"});
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 12: an unreachable tolerance (1e-300) no longer runs to the 10⁷-trial cap; the run
+// stops after three blocks and says how many trials it would need.
+TEST(AdaptiveHopeless, AnUnreachableToleranceStopsEarlyAndSaysWhy) {
+  using namespace vcmm::uncertainty;
+  AdaptiveOptions a;
+  a.numerical_tolerance = 1e-300;
+  a.block_size = 100;
+  a.max_trials = 1'000'000;
+  MonteCarloOptions o;
+  o.threads = 2;
+  const Experiment normal = [](RandomStream& rng, std::span<double> out) {
+    out[0] = rng.standard_normal();
+  };
+  const MonteCarloResult r = run_adaptive_monte_carlo(normal, 1, a, o);
+  EXPECT_EQ(r.status, RunStatus::not_converged);
+  EXPECT_EQ(r.blocks, 3u);
+  EXPECT_NE(r.message.find("cannot be reached"), std::string::npos) << r.message;
+  // A reachable tolerance still converges normally.
+  a.numerical_tolerance = 0.05;
+  EXPECT_EQ(run_adaptive_monte_carlo(normal, 1, a, o).status, RunStatus::converged);
+}
+
+TEST(MinimumSampleCount, TinyProbabilitiesAreRefusedNotOverflowed) {
+  using namespace vcmm::uncertainty;
+  EXPECT_EQ(minimum_sample_count(0.95), 11u);
+  EXPECT_GT(minimum_sample_count(1e-6), 400'000u);
+  try {
+    minimum_sample_count(1e-20);
+    ADD_FAILURE() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("2^62"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -423,6 +423,7 @@ MonteCarloResult run_adaptive(const Experiments& experiments, std::size_t q,
   std::vector<std::array<std::vector<double>, 4>> block_values(q);
   std::vector<PooledMoments> pooled(q);
   r.status = RunStatus::not_converged;
+  double projected_trials = 0.0;  // set when the tolerance is out of reach (below)
   for (std::uint64_t h = 0;; ++h) {
     if (options.cancel != nullptr && options.cancel->load()) {
       r.status = RunStatus::cancelled;
@@ -468,6 +469,22 @@ MonteCarloResult run_adaptive(const Experiments& experiments, std::size_t q,
       r.status = RunStatus::converged;
       break;
     }
+    // Hopeless? 2s falls like 1/√h, so about h·(2s/δ)² blocks would be needed. From the third
+    // block on, a projection beyond four times max_trials stops the run now instead of
+    // spending max_trials on a tolerance it cannot reach (e.g. δ = 1e-300).
+    if (r.blocks >= 3) {
+      double worst = 0.0;
+      for (std::size_t j = 0; j < q; ++j)
+        if (r.numerical_tolerance[j] > 0.0)
+          worst = std::max(worst, r.stability[j] / r.numerical_tolerance[j]);
+        else if (r.stability[j] > 0.0)
+          worst = std::numeric_limits<double>::infinity();
+      const double needed = static_cast<double>(r.blocks) * worst * worst * static_cast<double>(block);
+      if (needed > 4.0 * static_cast<double>(a.max_trials)) {
+        projected_trials = needed;
+        break;
+      }
+    }
   }
   r.trials = r.samples.size() / q;
   r.samples.shrink_to_fit();
@@ -480,8 +497,14 @@ MonteCarloResult run_adaptive(const Experiments& experiments, std::size_t q,
       r.message = "cancelled after " + std::to_string(r.trials) + " trials";
       break;
     default: {
-      r.message = "not converged within max_trials = " + std::to_string(a.max_trials) + " (" +
-                  std::to_string(r.blocks) + " blocks of " + std::to_string(block) + ")";
+      r.message = projected_trials > 0.0
+                      ? "stopped after " + std::to_string(r.blocks) + " blocks of " +
+                            std::to_string(block) + ": the numerical tolerance cannot be reached "
+                            "within max_trials = " + std::to_string(a.max_trials) +
+                            " (about " + format_short(projected_trials) + " trials would be needed)"
+                      : "not converged within max_trials = " + std::to_string(a.max_trials) +
+                            " (" + std::to_string(r.blocks) + " blocks of " +
+                            std::to_string(block) + ")";
       for (std::size_t j = 0; j < r.stability.size(); ++j) {
         if (r.stability[j] > r.numerical_tolerance[j]) {
           r.message += "; measurand " + std::to_string(j) + ": 2s = " + format_short(r.stability[j]) +

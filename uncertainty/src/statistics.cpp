@@ -110,6 +110,16 @@ std::uint64_t minimum_sample_count(double coverage_probability) {
   // q ≥ 1 needs pM ≳ ½ and q ≤ M − 1 needs (1 − p)M ≳ ½; both conditions are monotone in M
   // (q grows by 0 or 1 when M grows by 1), so step up from just below the estimate.
   const double estimate = std::max(0.5 / p, 0.5 / (1.0 - p));
+  // Beyond 2⁶² the count is not a number of trials anyone can run, and the cast below would
+  // overflow (undefined behaviour): refuse, saying how many trials p would need.
+  constexpr double kLimit = 4611686018427387904.0;  // 2⁶²
+  if (!(estimate < kLimit)) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "minimum_sample_count: coverage probability " << p << " needs about " << 2.0 * estimate
+       << " trials for a coverage interval (more than 2^62): use p between 1e-6 and 1 - 1e-6";
+    throw InvalidInput(os.str());
+  }
   std::uint64_t m = estimate > 8.0 ? static_cast<std::uint64_t>(estimate) - 4 : 1;
   for (;; ++m) {
     const std::uint64_t q = coverage_index(m, p);

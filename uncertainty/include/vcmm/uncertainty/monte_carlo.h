@@ -128,7 +128,9 @@ MonteCarloResult run_monte_carlo(const ExperimentFactory& factory, std::size_t m
 /// [h·B, (h+1)·B)) until for every measurand twice the standard deviation of the block
 /// estimates of mean, u, and both ends of the probabilistically symmetric interval is ≤ δ
 /// (7.9.4 steps); the result pools all trials (7.9.4, last step). status converged / not_converged
-/// (max_trials hit) / cancelled. options.trials is ignored.
+/// (max_trials hit, or — from the third block on — the tolerance out of reach: 2s falls like
+/// 1/√h, and when h·(2s/δ)² blocks exceed four times max_trials the run stops at once, the
+/// message giving the projected number of trials) / cancelled. options.trials is ignored.
 ///
 /// The standard deviation is the one 7.9.4 prescribes, that *associated with the average* of the h
 /// block values: s² = Σ_r (v_r − v̄)² / (h(h − 1)); the first check is after h = 2 blocks.

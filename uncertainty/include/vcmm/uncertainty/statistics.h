@@ -70,8 +70,8 @@ std::vector<double> correlation_matrix(std::span<const double> samples, std::siz
 std::uint64_t coverage_index(std::uint64_t sample_count, double coverage_probability);
 
 /// The least M for which summarize() can form both intervals at probability p (1 ≤ q ≤ M − 1).
-/// Throws InvalidInput if p is not in (0, 1) or the least M exceeds 2⁶²·(that is p within
-/// ~1e-18 of 1).
+/// Throws InvalidInput if p is not in (0, 1) or the least M exceeds 2⁶² (p below ~1e-19; no
+/// double p < 1 is close enough to 1 for that), naming the count p would need.
 std::uint64_t minimum_sample_count(double coverage_probability);
 
 }  // namespace vcmm::uncertainty

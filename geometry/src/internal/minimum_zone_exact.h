@@ -9,6 +9,7 @@
 #include <span>
 
 #include "internal/exact.h"
+#include "internal/precise_distance.h"
 #include "vcmm/geometry/minimum_zone.h"
 #include "vcmm/geometry/point.h"
 
@@ -41,6 +42,8 @@ struct RoundedAnnulus {
   double inner_sq = 0.0;  ///< nearest double of r*²
   double diff_sq = 0.0;   ///< nearest double of R*² − r*² (exact difference, then rounded)
   bool valid = false;     ///< r* < R* (false: the "inner" pair is not inside the outer circle)
+  /// The outer and inner circle for precise_side (double-double centre and radii²).
+  PreciseCircle outer_precise, inner_precise;
 };
 
 /// nullopt when a pair has coincident coordinates or the bisectors are parallel.

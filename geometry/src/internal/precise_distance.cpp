@@ -92,4 +92,86 @@ int precise_annulus_side(const PreciseCircle& outer, const PreciseCircle& inner,
   return 2;
 }
 
+namespace {
+
+/// A double-double value hi + lo with a bound on its distance to the exact value it stands
+/// for. Each operation adds the propagated errors and its own rounding: for a sum, TwoSum
+/// of the high parts is exact and the low parts (≤ 3u(|a| + |b|) together) are rounded
+/// twice, ≤ 6u²(|a| + |b|); for a product, TwoProduct of the high parts is exact, the
+/// cross terms (≤ 2u|a||b|) and their sum with p.lo are rounded four times and the dropped
+/// lo·lo is ≤ u²|a||b|:
+/// ≤ 8u²|a||b|. 10u² covers both with the magnitudes taken as |hi| + |lo|.
+struct Bounded {
+  double hi = 0.0, lo = 0.0, err = 0.0;
+  double magnitude() const { return std::fabs(hi) + std::fabs(lo); }
+};
+
+Bounded renormalised(double s, double t, double err) {
+  const TwoDoubles r = two_sum(s, t);  // exact (s may have cancelled below |t|)
+  return {r.hi, r.lo, err};
+}
+
+Bounded operator+(const Bounded& a, const Bounded& b) {
+  const TwoDoubles s = two_sum(a.hi, b.hi);
+  const double t = s.lo + (a.lo + b.lo);
+  return renormalised(s.hi, t,
+                      a.err + b.err + 10.0 * kU * kU * (a.magnitude() + b.magnitude()));
+}
+
+Bounded operator-(const Bounded& a) { return {-a.hi, -a.lo, a.err}; }
+Bounded operator-(const Bounded& a, const Bounded& b) { return a + (-b); }
+
+Bounded operator*(const Bounded& a, const Bounded& b) {
+  const TwoDoubles p = two_product(a.hi, b.hi);
+  const double t = p.lo + (a.hi * b.lo + a.lo * b.hi);
+  const double ma = a.magnitude(), mb = b.magnitude();
+  return renormalised(p.hi, t,
+                      ma * b.err + mb * a.err + a.err * b.err + 10.0 * kU * kU * ma * mb);
+}
+
+Bounded exact_difference(double x, double y) {
+  const TwoDoubles d = two_sum(x, y == 0.0 ? 0.0 : -y);
+  return {d.hi, d.lo, 0.0};
+}
+
+}  // namespace
+
+int filtered_incircle(Point2 a, Point2 b, Point2 c, Point2 d) {
+  // Stage 1: doubles (Shewchuk's incircle, stage A).
+  {
+    const double adx = a.x - d.x, ady = a.y - d.y, bdx = b.x - d.x, bdy = b.y - d.y;
+    const double cdx = c.x - d.x, cdy = c.y - d.y;
+    const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy, cdxady = cdx * ady;
+    const double adxcdy = adx * cdy, adxbdy = adx * bdy, bdxady = bdx * ady;
+    const double alift = adx * adx + ady * ady, blift = bdx * bdx + bdy * bdy;
+    const double clift = cdx * cdx + cdy * cdy;
+    const double det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) +
+                       clift * (adxbdy - bdxady);
+    const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * alift +
+                             (std::fabs(cdxady) + std::fabs(adxcdy)) * blift +
+                             (std::fabs(adxbdy) + std::fabs(bdxady)) * clift;
+    const double bound = (10.0 + 96.0 * kU) * kU * permanent;
+    if (std::isfinite(det) && std::isfinite(bound)) {
+      if (det > bound) return 1;
+      if (det < -bound) return -1;
+    } else {
+      return 2;
+    }
+  }
+  // Stage 2: double-double with running error bounds (differences exact by TwoSum).
+  const Bounded adx = exact_difference(a.x, d.x), ady = exact_difference(a.y, d.y);
+  const Bounded bdx = exact_difference(b.x, d.x), bdy = exact_difference(b.y, d.y);
+  const Bounded cdx = exact_difference(c.x, d.x), cdy = exact_difference(c.y, d.y);
+  const Bounded alift = adx * adx + ady * ady, blift = bdx * bdx + bdy * bdy;
+  const Bounded clift = cdx * cdx + cdy * cdy;
+  const Bounded det = alift * (bdx * cdy - cdx * bdy) + blift * (cdx * ady - adx * cdy) +
+                      clift * (adx * bdy - bdx * ady);
+  const double value = det.hi + det.lo;
+  const double bound = det.err + 2.0 * kU * std::fabs(value) + kTiny;
+  if (!std::isfinite(value) || !std::isfinite(bound)) return 2;
+  if (value > bound) return 1;
+  if (value < -bound) return -1;
+  return 2;
+}
+
 }  // namespace vcmm::geometry::internal

@@ -112,11 +112,14 @@ int precise_annulus_side(const PreciseCircle& outer, const PreciseCircle& inner,
 /// points co-circular to the last ulp.
 int filtered_incircle(Point2 a, Point2 b, Point2 c, Point2 d);
 
-/// |p − c|² − k, c a double point, k = s² for a double s, to ~u² relative to |p − c|²
-/// (double-double, no rigorous bound): the linearised programs' costs on thin zones, where
-/// plain doubles lose the ~1e-16 relative differences between the squared distances.
-inline double precise_power(Point2 p, Point2 c, double s) {
-  const TwoDoubles dx = two_sum(p.x, -c.x), dy = two_sum(p.y, -c.y);
+/// |(p − c)·scale|² − s², c a double point, s a double (already in scaled units), scale a
+/// power of two (1: unscaled), to ~u² relative to |p − c|² (double-double, no rigorous
+/// bound): the linearised programs' costs on thin zones, where plain doubles lose the
+/// ~1e-16 relative differences between the squared distances.
+inline double precise_power(Point2 p, Point2 c, double s, double scale = 1.0) {
+  TwoDoubles dx = two_sum(p.x, -c.x), dy = two_sum(p.y, -c.y);
+  dx = {dx.hi * scale, dx.lo * scale};
+  dy = {dy.hi * scale, dy.lo * scale};
   const TwoDoubles P = two_product(dx.hi, dx.hi), Q = two_product(dy.hi, dy.hi);
   const TwoDoubles K = two_product(s, s);
   const TwoDoubles S = two_sum(P.hi, Q.hi);

@@ -46,7 +46,9 @@
 //      data, symmetric polygons). Among them the reported triple is the acute one of
 //      largest β (below): the one nearest in angle to 0°, 120°, 240° from the lowest-index
 //      contact, or the program's own triple if that is better. Acute (exact dot-product
-//      signs) ⇒ a strict local maximum.
+//      signs) ⇒ a strict local maximum. No acute triple (the program's basis was degenerate
+//      to within rounding: 0 on an edge of its triangle of directions): one step of the
+//      Voronoi walk along the edge of the other two contacts (walk_step), and step 3 again.
 //   5. Global proof (internal/inscribed_region.h): (a) the contact cone r(c) < r* for
 //      0 < |d| < 2r*β (β: distance from 0 to the boundary of the triangle of the v_k);
 //      (b) angular coverage for |d| from about the profile's peak-to-valley up to the hull's
@@ -103,6 +105,8 @@
 #include "internal/extremal_circle.h"
 #include "internal/inscribed_lp.h"
 #include "internal/inscribed_region.h"
+#include "internal/maximum_inscribed_detail.h"
+#include "internal/precise_distance.h"
 #include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
@@ -496,6 +500,57 @@ std::optional<std::array<std::size_t, 3>> contact_triple(std::span<const Point2>
   return best;
 }
 
+/// Step 4, repair: the program's triple gives an empty circle whose triangle is right or
+/// obtuse (its basis was degenerate to within rounding: 0 on the edge of the triangle of
+/// directions). Then r grows from the centre along the bisector of the two other contacts,
+/// away from the wide-angle vertex, until a point X becomes equidistant: with n that unit
+/// direction, |c + tn − X|² − |c + tn − B|² = g(X) − 2t·n·(X − B) with g(X) = |c − X|² − r²
+/// ≥ 0, so X minimises g(X)/(2n·(X − B)) over the points ahead. One step of the Voronoi walk;
+/// g from the double-double gap where the first stage cannot resolve it. The next triple is
+/// re-derived exactly by the caller, like the program's.
+std::optional<std::array<std::size_t, 3>> walk_step(std::span<const Point2> points,
+                                                    const ExactCircle& circle,
+                                                    const std::array<std::size_t, 3>& t) {
+  int wide = -1;
+  for (int k = 0; k < 3; ++k)
+    if (internal::dot_sign(points[t[static_cast<std::size_t>(k)]],
+                           points[t[static_cast<std::size_t>((k + 1) % 3)]],
+                           points[t[static_cast<std::size_t>((k + 2) % 3)]]) <= 0)
+      wide = k;
+  if (wide < 0) return std::nullopt;
+  const std::size_t ia = t[static_cast<std::size_t>(wide)];
+  const std::size_t ib = t[static_cast<std::size_t>((wide + 1) % 3)];
+  const std::size_t ic = t[static_cast<std::size_t>((wide + 2) % 3)];
+  const Point2 a = points[ia], b = points[ib], cc = points[ic];
+  double nx = -(cc.y - b.y), ny = cc.x - b.x;
+  if (nx * (a.x - b.x) + ny * (a.y - b.y) > 0.0) {
+    nx = -nx;
+    ny = -ny;
+  }
+  const double s = circle.scale, r2 = circle.radius_scaled * circle.radius_scaled;
+  const Point2 c = circle.center_d;
+  const bool precise = circle.filter_usable && circle.precise().usable;
+  std::size_t best = kNone;
+  double best_num = 1.0, best_den = 0.0;  // +infinity
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point2 x = points[i];
+    if (x == a || x == b || x == cc) continue;
+    const double den = (nx * (x.x - b.x) + ny * (x.y - b.y)) * s;
+    if (!(den > 0.0)) continue;
+    double g = internal::scaled_distance2(x, c, s) - r2;
+    if (precise && g < 0x1.0p20 * internal::kUnitRoundoff)
+      g = internal::precise_power_gap(circle.precise(), x).value;
+    g = std::max(g, 0.0);
+    if (best == kNone || g * best_den < best_num * den) {
+      best = i;
+      best_num = g;
+      best_den = den;
+    }
+  }
+  if (best == kNone) return std::nullopt;  // an unbounded Voronoi edge: no maximum ahead
+  return std::array<std::size_t, 3>{ib, ic, best};
+}
+
 /// Step 5, local part: the Delaunay triangulation of the points within r* + 2ρ of c*
 /// (F4), where ρ = region.radius; its surrounded vertices with centres in D(c*, ρ) are
 /// compared exactly with the fast path's circle. Returns the winner and its contacts.
@@ -594,24 +649,31 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
     }
 
   Point2 c = c0;
-  // Rounds: linearisations and violator rounds together. 24 is far above what round
-  // profiles need (2-4); beyond it the fallback is cheaper than more rounds.
+  // Rounds: linearisations, violator rounds and walk steps together. 24 is far above what
+  // round profiles need (2-4); beyond it the fallback is cheaper than more rounds.
   int violator_rounds = 0;
+  std::optional<std::array<std::size_t, 3>> walked;  // the next triple, from a walk step
   for (int round = 0; round < 24; ++round) {
-    if (!lp.solve(c)) return std::nullopt;
-    const Point2 delta = lp.delta();
-    const double step = std::hypot(delta.x, delta.y);
-    // Trust region: the model is only good for |δ| ≪ ρ.
-    const double max_step = 0.25 * lp.rho_min();
-    if (step > max_step) {
-      c = {c.x + delta.x * max_step / step, c.y + delta.y * max_step / step};
-      continue;
+    std::array<std::size_t, 3> triple{};
+    if (walked) {
+      triple = *walked;
+      walked.reset();
+    } else {
+      if (!lp.solve(c)) return std::nullopt;
+      const Point2 delta = lp.delta();
+      const double step = std::hypot(delta.x, delta.y);
+      // Trust region: the model is only good for |δ| ≪ ρ.
+      const double max_step = 0.25 * lp.rho_min();
+      if (step > max_step) {
+        c = {c.x + delta.x * max_step / step, c.y + delta.y * max_step / step};
+        continue;
+      }
+      if (lp.relative_linearisation_error() > 1e-3) {
+        c = {c.x + delta.x, c.y + delta.y};
+        continue;
+      }
+      triple = lp.basis_points();
     }
-    if (lp.relative_linearisation_error() > 1e-3) {
-      c = {c.x + delta.x, c.y + delta.y};
-      continue;
-    }
-    const std::array<std::size_t, 3> triple = lp.basis_points();
     const Point2 pa = points[triple[0]], pb = points[triple[1]], pc = points[triple[2]];
     if (CGAL::orientation(to_epick(pa), to_epick(pb), to_epick(pc)) == CGAL::COLLINEAR)
       return std::nullopt;
@@ -635,7 +697,13 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
     // Steps 4-5.
     const std::optional<std::array<std::size_t, 3>> chosen =
         contact_triple(points, circle, triple, pass.on_circle);
-    if (!chosen) return std::nullopt;
+    if (!chosen) {
+      walked = walk_step(points, circle, triple);
+      if (!walked) return std::nullopt;
+      lp.add((*walked)[2]);
+      c = circle.center_d;
+      continue;
+    }
     std::array<std::size_t, 3> contacts = *chosen;
     const internal::InscribedRegion region = internal::inscribed_region(
         points, circle, contacts, pass.max_d2, occupied, c0);
@@ -699,6 +767,10 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
 MaximumInscribedCircle maximum_inscribed_circle(std::span<const Point2> points) {
   validate_profile(points, 3, kCaller, /*require_non_collinear=*/true);
   return internal::fit_maximum_inscribed_circle(points);
+}
+
+MaximumInscribedCircle internal::maximum_inscribed_exhaustive(std::span<const Point2> points) {
+  return exhaustive(points);
 }
 
 MaximumInscribedCircle internal::fit_maximum_inscribed_circle(std::span<const Point2> points) {

@@ -140,6 +140,7 @@
 #include <vector>
 
 #include "internal/exact.h"
+#include "internal/extremal_circle.h"
 #include "internal/minimum_zone_common.h"
 #include "internal/minimum_zone_exact.h"
 #include "internal/minimum_zone_overlay.h"
@@ -709,11 +710,21 @@ std::optional<std::array<std::size_t, 3>> cocircular_triple(std::span<const Poin
     ++k;
   if (k == n) return std::nullopt;
   const EPoint c = internal::to_epick(points[k]);
+  // Almost always the first other point decides (CGAL's static filter); once one lies on
+  // the circle, the rest are tested against the circle's own exact representation
+  // (double-double filter, then its integers: ~5× cheaper than a full in-circle predicate
+  // on exact ties, which is what every point of co-circular data is).
+  std::optional<internal::ExactCircle> circle;
   for (std::size_t i = 1; i < n; ++i) {
     if (i == j || i == k) continue;
-    if (CGAL::side_of_bounded_circle(a, b, c, internal::to_epick(points[i])) !=
-        CGAL::ON_BOUNDARY)
-      return std::nullopt;
+    if (!circle) {
+      if (CGAL::side_of_oriented_circle(a, b, c, internal::to_epick(points[i])) !=
+          CGAL::ON_ORIENTED_BOUNDARY)
+        return std::nullopt;
+      circle = internal::exact_circumcircle(points[0], points[j], points[k]);
+      continue;
+    }
+    if (internal::exact_side(*circle, points[i]) != CGAL::ON_BOUNDARY) return std::nullopt;
   }
   return std::array<std::size_t, 3>{0, j, k};
 }

@@ -653,6 +653,7 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
   // round profiles need (2-4); beyond it the fallback is cheaper than more rounds.
   int violator_rounds = 0;
   std::optional<std::array<std::size_t, 3>> walked;  // the next triple, from a walk step
+  std::array<std::size_t, 3> last{kNone, kNone, kNone};  // the program's previous triple
   for (int round = 0; round < 24; ++round) {
     std::array<std::size_t, 3> triple{};
     if (walked) {
@@ -673,6 +674,11 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
         continue;
       }
       triple = lp.basis_points();
+      // The same basis again although the last round added violators or walked on: its
+      // plain costs cannot separate these points (radii within ~u·ρ of each other near the
+      // optimum). Precise costs from now on.
+      if (triple == last) lp.force_precise();
+      last = triple;
     }
     const Point2 pa = points[triple[0]], pb = points[triple[1]], pc = points[triple[2]];
     if (CGAL::orientation(to_epick(pa), to_epick(pb), to_epick(pc)) == CGAL::COLLINEAR)

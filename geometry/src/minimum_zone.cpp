@@ -230,8 +230,19 @@ struct Candidate {
     return *exact_;
   }
 
+  /// The annulus with double-double centre and radii² for the second-stage filter
+  /// (computed on first use: only points the first stage cannot place need it).
+  const internal::RoundedAnnulus& precise() const {
+    if (!precise_) {
+      precise_ = internal::rounded_annulus(points, quad.outer, quad.inner, true);
+      if (!precise_) precise_ = internal::RoundedAnnulus{};  // unusable (cannot happen)
+    }
+    return *precise_;
+  }
+
  private:
   mutable std::optional<ExactAnnulus> exact_;
+  mutable std::optional<internal::RoundedAnnulus> precise_;
 };
 
 /// One ulp of v: a generous bound on the error of a nearest double (at most half an ulp).
@@ -342,7 +353,8 @@ bool is_strictly_alternating(std::span<const Point2> points, const Candidate& k)
 /// (internal/precise_distance.h) decides all but the exact ties (contacts, co-circular
 /// points), which get the rational comparison.
 int annulus_side(const Candidate& k, Point2 p) {
-  const int s = internal::precise_annulus_side(k.rounded.outer_precise, k.rounded.inner_precise, p);
+  const int s = internal::precise_annulus_side(k.precise().outer_precise,
+                                               k.precise().inner_precise, p);
   if (s != 2) return s;
   const Rational d2 = internal::squared_distance(internal::to_rational(p), k.exact().center);
   if (d2 > k.exact().outer_sq) return 1;
@@ -470,10 +482,11 @@ bool contains_points(std::span<const Point2> points, const Candidate& k,
 
 /// +1 when p lies exactly on the outer circle of k, −1 exactly on the inner one, 0 otherwise.
 int boundary_of(const Candidate& k, Point2 p) {
-  const internal::PreciseValue o = internal::precise_power_gap(k.rounded.outer_precise, p);
-  const bool maybe_outer = !k.rounded.outer_precise.usable || internal::sign_of(o) == 0;
-  const internal::PreciseValue i = internal::precise_power_gap(k.rounded.inner_precise, p);
-  const bool maybe_inner = !k.rounded.inner_precise.usable || internal::sign_of(i) == 0;
+  const internal::RoundedAnnulus& a = k.precise();
+  const internal::PreciseValue o = internal::precise_power_gap(a.outer_precise, p);
+  const bool maybe_outer = !a.outer_precise.usable || internal::sign_of(o) == 0;
+  const internal::PreciseValue i = internal::precise_power_gap(a.inner_precise, p);
+  const bool maybe_inner = !a.inner_precise.usable || internal::sign_of(i) == 0;
   if (!maybe_outer && !maybe_inner) return 0;
   const Rational d2 = internal::squared_distance(internal::to_rational(p), k.exact().center);
   if (maybe_outer && d2 == k.exact().outer_sq) return 1;
@@ -852,8 +865,9 @@ class ChebyshevLp {
       degenerate_run = (step == 2) ? degenerate_run + 1 : 0;
       if (pivots == 999) return LpStatus::failed;
     }
-    // Thin zones: plain squared distances (rounded to ~1.5u·ρ) cannot rank the points any
-    // more; pricing switches to double-double powers (internal/precise_distance.h) for good.
+    // Thin zones: plain costs and squared distances (rounded to ~1.5u·ρ) cannot rank the
+    // points any more; costs and pricing switch to double-double (internal/
+    // precise_distance.h) for good, from the next solve on.
     precise_ = precise_ || width() < kPrecisePricing * kU * rho_max_;
     return LpStatus::optimal;
   }
@@ -868,14 +882,20 @@ class ChebyshevLp {
     int added = 0;
     if (precise_) {
       // Powers |p − c|² − s² against the model's (R² − s², r² − s²), s = shift: with
-      // R = s + y₂ + tol, R² − s² = (y₂ + tol)(y₂ + tol + 2s), likewise for r.
+      // R = s + y₂ + tol, R² − s² = (y₂ + tol)(y₂ + tol + 2s), likewise for r. The centre
+      // c0 + δ is not rounded (a rounding of ~1e-13 mm would be the zone's own size):
+      // |p − c0 − δ|² = |p − c0|² + 2(c0 − p)·δ + |δ|² exactly, the first term in
+      // double-double, the others (≪ the first) in double.
       const double ro = y_[2] + tol, ri = -y_[3] - tol;
       const double g_out = ro * (ro + 2.0 * shift_), g_in = ri * (ri + 2.0 * shift_);
+      const double dx = -y_[0], dy = -y_[1], d2 = dx * dx + dy * dy;
       for (std::size_t b = 0; b < blocks; ++b) {
         std::size_t imax = b * n / blocks, imin = imax;
         double gmax = -std::numeric_limits<double>::infinity(), gmin = -gmax;
         for (std::size_t i = b * n / blocks; i < (b + 1) * n / blocks; ++i) {
-          const double g = internal::precise_power(points_[i], c, shift_);
+          const Point2 p = points_[i];
+          const double g = internal::precise_power(p, c0_, shift_) +
+                           2.0 * ((c0_.x - p.x) * dx + (c0_.y - p.y) * dy) + d2;
           if (g > gmax) {
             gmax = g;
             imax = i;
@@ -898,6 +918,14 @@ class ChebyshevLp {
       if (e.smin < r2 && add_candidate({e.imin, false})) ++added;
     }
     return added;
+  }
+
+  /// Switches costs and pricing to double-double (from the next solve on); false when they
+  /// already are.
+  bool escalate_precision() {
+    if (precise_) return false;
+    precise_ = true;
+    return true;
   }
 
   /// True once, when the zone has just been found thin (pricing became precise).
@@ -951,18 +979,22 @@ class ChebyshevLp {
     return true;
   }
 
-  /// ρ − s for the point at distance ρ from c0, s = shift: (ρ² − s²)/(ρ + s) with the
-  /// numerator in double-double, so the costs keep their ~1e-16 relative differences (a
-  /// plain ρ − s would round them away on perfect circles and ulp-level forms).
+  /// ρ − s for the point at distance ρ from c0, s = shift. Thin zones: (ρ² − s²)/(ρ + s)
+  /// with the numerator in double-double, so the costs keep their ~1e-16 relative
+  /// differences (a plain ρ − s rounds them away on perfect circles and ulp-level forms);
+  /// otherwise the plain difference, whose ~u·ρ error is far below the zone.
   double shifted_cost(std::size_t point, double rho) const {
+    if (!precise_) return rho - shift_;
     const double den = rho + shift_;
     return den > 0.0 ? internal::precise_power(points_[point], c0_, shift_) / den : 0.0;
   }
 
-  /// Reduced costs are sums of a cost (≤ cost_scale_) and products of unit directions with
-  /// y, each rounded: 64u of their magnitudes leaves ties below it to the exact stage; the
-  /// absolute term covers the costs' own error (a few u² of ρ).
+  /// Ties below the costs' resolution are left to the exact stage. Plain costs carry ~u·ρ:
+  /// 64u·ρ_max. Precise costs: reduced costs are sums of a cost (≤ cost_scale_) and products
+  /// of unit directions with y, each rounded: 64u of their magnitudes, plus the costs' own
+  /// error (a few u² of ρ).
   double tolerance() const {
+    if (!precise_) return 64.0 * kU * std::max(1.0, rho_max_);
     return 64.0 * kU * (cost_scale_ + y_.cwiseAbs().sum()) + 1024.0 * kU * kU * rho_max_;
   }
 
@@ -1340,6 +1372,10 @@ FastPath run_fast_path(std::span<const Point2> points) {
     }
     // Points the candidates missed: add each block's worst and re-solve the same model.
     if (lp.full_pricing() > 0) continue;
+    // Settled on an uncertified optimum with plain costs: near-ties below their ~u·ρ
+    // resolution (a zone wider than the thin threshold whose contacts still differ by less).
+    // Double-double costs and pricing from here on, before the exact repairs.
+    if (lp.escalate_precision()) continue;
     // The model has settled on this candidate set and its optimum is not certified:
     // near-ties (or a degenerate basis). Exact exchange from the LP's quadruple, then exact
     // enumeration of the near-extremal points; if both fail, re-linearise at the model's

@@ -334,6 +334,13 @@ int integer_side(const ExactCircle& circle, Point2 p) {
 }  // namespace
 
 CGAL::Bounded_side exact_side(const ExactCircle& circle, Point2 p, double* gap) {
+  // The supports (and their duplicates) lie on the circle by construction: every pass
+  // meets them in its ambiguous band, and they need no arithmetic at all.
+  for (int k = 0; k < circle.support_size; ++k)
+    if (p == circle.support[static_cast<std::size_t>(k)]) {
+      if (gap != nullptr) *gap = 0.0;
+      return CGAL::ON_BOUNDARY;
+    }
   if (circle.filter_usable && circle.precise().usable) {
     const PreciseValue v = precise_power_gap(circle.precise(), p);
     if (gap != nullptr) *gap = v.value;

@@ -2,9 +2,6 @@
 // internal/inscribed_lp.h).
 #include "internal/inscribed_lp.h"
 
-#include <Eigen/Core>
-#include <Eigen/LU>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +13,9 @@ namespace vcmm::geometry::internal {
 
 namespace {
 constexpr double kU = 0x1.0p-53;
+/// Costs switch to double-double below this many u·ρ of spread (as MZ's pricing: 2¹²u·ρ
+/// ≈ 4e-11 mm at 85 mm).
+constexpr double kPreciseCosts = 4096.0;
 }  // namespace
 
 InscribedLp::InscribedLp(std::span<const Point2> points, double scale)
@@ -44,11 +44,22 @@ bool InscribedLp::solve(Point2 c0) {
     rho_max_ = std::max(rho_max_, rho[k]);
   }
   shift_ = 0.5 * (rho_min_ + rho_max_);
+  // Plain costs ρ − s carry ~u·ρ of rounding: enough unless the candidates' radii spread
+  // less than 2¹²u·ρ (perfect circles, ulp-level forms); then ρ − s = (ρ² − s²)/(ρ + s) with
+  // the numerator in double-double.
   cost_scale_ = 0.0;
   for (std::size_t k = 0; k < cols_.size(); ++k) {
-    // ρ − s = (ρ² − s²)/(ρ + s), numerator in double-double.
-    cols_[k].cost = precise_power(points_[cols_[k].point], c0, shift_, scale_) / (rho[k] + shift_);
+    cols_[k].cost = rho[k] - shift_;
     cost_scale_ = std::max(cost_scale_, std::abs(cols_[k].cost));
+  }
+  precise_ = forced_ || cost_scale_ < kPreciseCosts * kU * rho_max_;
+  if (precise_) {
+    cost_scale_ = 0.0;
+    for (std::size_t k = 0; k < cols_.size(); ++k) {
+      cols_[k].cost =
+          precise_power(points_[cols_[k].point], c0, shift_, scale_) / (rho[k] + shift_);
+      cost_scale_ = std::max(cost_scale_, std::abs(cols_[k].cost));
+    }
   }
   if (!(have_basis_ && set_basis(basis_)) && !feasible_start()) return false;
   int degenerate_run = 0;
@@ -73,31 +84,40 @@ double InscribedLp::relative_linearisation_error() const {
   return err / std::max(cost_scale_, 64.0 * kU * rho_max_);
 }
 
-/// Column a_j = (−e_j, 1).
+/// Column a_j = (−e_j, 1). The 3×3 inverse by cofactors (the basis is tiny and refactored
+/// at every pivot).
 bool InscribedLp::set_basis(const std::array<std::size_t, 3>& b) {
-  Eigen::Matrix3d B;
-  for (int j = 0; j < 3; ++j) {
-    const Column& c = cols_[b[static_cast<std::size_t>(j)]];
-    B.col(j) = Eigen::Vector3d(-c.ex, -c.ey, 1.0);
+  std::array<std::array<double, 3>, 3> m{};  // m[r][j]: row r of column j
+  for (std::size_t j = 0; j < 3; ++j) {
+    const Column& c = cols_[b[j]];
+    m[0][j] = -c.ex;
+    m[1][j] = -c.ey;
+    m[2][j] = 1.0;
   }
-  Eigen::FullPivLU<Eigen::Matrix3d> lu(B);
-  // Directions of unit vectors: a determinant below 1e-14 means three nearly parallel
-  // or coincident directions, useless as a basis.
-  if (!lu.isInvertible() || std::abs(lu.determinant()) < 1e-14) return false;
-  const Eigen::Matrix3d inv = lu.inverse();
-  const Eigen::Vector3d mu = inv * Eigen::Vector3d(0.0, 0.0, 1.0);
-  if (mu.minCoeff() < -1e-9) return false;  // 0 not in the triangle of directions
+  std::array<std::array<double, 3>, 3> inv{};
+  for (std::size_t r = 0; r < 3; ++r)
+    for (std::size_t j = 0; j < 3; ++j) {
+      // inv[r][j] = cofactor(j, r) / det
+      const std::size_t r1 = (j + 1) % 3, r2 = (j + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      inv[r][j] = m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1];
+    }
+  const double det = m[0][0] * inv[0][0] + m[0][1] * inv[1][0] + m[0][2] * inv[2][0];
+  // Directions are unit vectors: a determinant below 1e-14 means three nearly parallel or
+  // coincident directions, useless as a basis.
+  if (!(std::abs(det) >= 1e-14) || !std::isfinite(det)) return false;
+  for (auto& row : inv)
+    for (double& v : row) v /= det;
+  // μ = B⁻¹(0, 0, 1): the last column; 0 must be in the triangle of directions.
+  std::array<double, 3> mu{inv[0][2], inv[1][2], inv[2][2]};
+  if (std::min({mu[0], mu[1], mu[2]}) < -1e-9) return false;
   basis_ = b;
   have_basis_ = true;
-  Eigen::Vector3d cb;
-  for (int j = 0; j < 3; ++j) cb[j] = cols_[b[static_cast<std::size_t>(j)]].cost;
-  const Eigen::Vector3d y = inv.transpose() * cb;
-  for (int r = 0; r < 3; ++r) {
-    mu_[static_cast<std::size_t>(r)] = std::max(mu[r], 0.0);
-    y_[static_cast<std::size_t>(r)] = y[r];
-    for (int c = 0; c < 3; ++c)
-      binv_[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] = inv(r, c);
-  }
+  binv_ = inv;
+  for (std::size_t r = 0; r < 3; ++r) mu_[r] = std::max(mu[r], 0.0);
+  // y = B⁻ᵀ c_B.
+  for (std::size_t r = 0; r < 3; ++r)
+    y_[r] = inv[0][r] * cols_[b[0]].cost + inv[1][r] * cols_[b[1]].cost +
+            inv[2][r] * cols_[b[2]].cost;
   return true;
 }
 
@@ -153,10 +173,12 @@ bool InscribedLp::feasible_start() {
   return pick[1] != i && set_basis(pick);
 }
 
-/// Reduced costs combine a cost (≤ cost_scale_) with unit directions times y, each rounded:
-/// 64u of their magnitudes leaves ties below it to the exact stage; the last term covers
-/// the costs' own error (a few u² of ρ).
+/// Ties below the costs' resolution are left to the exact stage. Plain costs carry ~u·ρ:
+/// 64u·ρ_max. Precise costs: reduced costs combine a cost (≤ cost_scale_) with unit
+/// directions times y, each rounded: 64u of their magnitudes, plus the costs' own error (a
+/// few u² of ρ).
 double InscribedLp::tolerance() const {
+  if (!precise_) return 64.0 * kU * rho_max_;
   return 64.0 * kU * (cost_scale_ + std::abs(y_[0]) + std::abs(y_[1]) + std::abs(y_[2])) +
          1024.0 * kU * kU * rho_max_;
 }

@@ -126,7 +126,8 @@ double rounded_quotient(mpz_srcptr num, mpz_srcptr den, long exp) {
 
 std::optional<RoundedAnnulus> rounded_annulus(std::span<const Point2> points,
                                               std::array<std::size_t, 2> outer,
-                                              std::array<std::size_t, 2> inner) {
+                                              std::array<std::size_t, 2> inner,
+                                              bool low_parts) {
   const Point2 q[4] = {points[outer[0]], points[outer[1]], points[inner[0]], points[inner[1]]};
   if (q[0] == q[1] || q[2] == q[3]) return std::nullopt;
   int E = std::numeric_limits<int>::max();
@@ -189,7 +190,15 @@ std::optional<RoundedAnnulus> rounded_annulus(std::span<const Point2> points,
   mpz_addmul(Cx.get(), c[0].get(), D.get());
   mpz_set(Cy.get(), Y.get());
   mpz_addmul(Cy.get(), c[1].get(), D.get());
-  // Each double is the correctly rounded value; the low parts feed the second-stage filter.
+  if (!low_parts) {
+    out.center = {rounded_quotient(Cx.get(), D.get(), E), rounded_quotient(Cy.get(), D.get(), E)};
+    out.outer_sq = rounded_quotient(NR.get(), D2.get(), 2L * E);
+    out.inner_sq = rounded_quotient(Nr.get(), D2.get(), 2L * E);
+    mpz_sub(t1.get(), NR.get(), Nr.get());
+    out.diff_sq = rounded_quotient(t1.get(), D2.get(), 2L * E);
+    return out;
+  }
+  // The same correctly rounded doubles, with the low parts for the second-stage filter.
   double ex_err = 0.0, ey_err = 0.0, eo_err = 0.0, ei_err = 0.0;
   const TwoDoubles cx = split_quotient(Cx.get(), D.get(), E, &ex_err);
   const TwoDoubles cy = split_quotient(Cy.get(), D.get(), E, &ey_err);

@@ -136,28 +136,7 @@ Bounded exact_difference(double x, double y) {
 
 }  // namespace
 
-int filtered_incircle(Point2 a, Point2 b, Point2 c, Point2 d) {
-  // Stage 1: doubles (Shewchuk's incircle, stage A).
-  {
-    const double adx = a.x - d.x, ady = a.y - d.y, bdx = b.x - d.x, bdy = b.y - d.y;
-    const double cdx = c.x - d.x, cdy = c.y - d.y;
-    const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy, cdxady = cdx * ady;
-    const double adxcdy = adx * cdy, adxbdy = adx * bdy, bdxady = bdx * ady;
-    const double alift = adx * adx + ady * ady, blift = bdx * bdx + bdy * bdy;
-    const double clift = cdx * cdx + cdy * cdy;
-    const double det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) +
-                       clift * (adxbdy - bdxady);
-    const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * alift +
-                             (std::fabs(cdxady) + std::fabs(adxcdy)) * blift +
-                             (std::fabs(adxbdy) + std::fabs(bdxady)) * clift;
-    const double bound = (10.0 + 96.0 * kU) * kU * permanent;
-    if (std::isfinite(det) && std::isfinite(bound)) {
-      if (det > bound) return 1;
-      if (det < -bound) return -1;
-    } else {
-      return 2;
-    }
-  }
+int precise_incircle(Point2 a, Point2 b, Point2 c, Point2 d) {
   // Stage 2: double-double with running error bounds (differences exact by TwoSum).
   const Bounded adx = exact_difference(a.x, d.x), ady = exact_difference(a.y, d.y);
   const Bounded bdx = exact_difference(b.x, d.x), bdy = exact_difference(b.y, d.y);

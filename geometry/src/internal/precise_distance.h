@@ -32,6 +32,8 @@
 
 #include <gmp.h>
 
+#include <cmath>
+
 #include "vcmm/geometry/point.h"
 
 namespace vcmm::geometry::internal {
@@ -109,8 +111,28 @@ int precise_annulus_side(const PreciseCircle& outer, const PreciseCircle& inner,
 /// arithmetic and fast robust geometric predicates", DCG 18, 1997), then double-double with
 /// a running error bound (precise_distance.cpp). Returns 2 when neither decides (ties and
 /// out-of-range values: ask CGAL's exact predicate). ~15 flops on general data, ~300 on
-/// points co-circular to the last ulp.
-int filtered_incircle(Point2 a, Point2 b, Point2 c, Point2 d);
+/// points co-circular to the last ulp. The first stage is inline (it decides general data).
+int precise_incircle(Point2 a, Point2 b, Point2 c, Point2 d);  ///< the second stage alone
+inline int filtered_incircle(Point2 a, Point2 b, Point2 c, Point2 d) {
+  constexpr double kU = 0x1.0p-53;
+  // Stage 1: doubles (Shewchuk's incircle, stage A).
+  const double adx = a.x - d.x, ady = a.y - d.y, bdx = b.x - d.x, bdy = b.y - d.y;
+  const double cdx = c.x - d.x, cdy = c.y - d.y;
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy, cdxady = cdx * ady;
+  const double adxcdy = adx * cdy, adxbdy = adx * bdy, bdxady = bdx * ady;
+  const double alift = adx * adx + ady * ady, blift = bdx * bdx + bdy * bdy;
+  const double clift = cdx * cdx + cdy * cdy;
+  const double det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) +
+                     clift * (adxbdy - bdxady);
+  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * alift +
+                           (std::fabs(cdxady) + std::fabs(adxcdy)) * blift +
+                           (std::fabs(adxbdy) + std::fabs(bdxady)) * clift;
+  const double bound = (10.0 + 96.0 * kU) * kU * permanent;
+  if (!(std::isfinite(det) && std::isfinite(bound))) return 2;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return precise_incircle(a, b, c, d);
+}
 
 /// |(p − c)·scale|² − s², c a double point, s a double (already in scaled units), scale a
 /// power of two (1: unscaled), to ~u² relative to |p − c|² (double-double, no rigorous

@@ -94,7 +94,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -456,8 +455,9 @@ double beta_of(std::span<const Point2> points, Point2 c, const std::array<std::s
 }
 
 /// Step 4: the reported contact triple among the program's `triple` and the points found
-/// exactly on the circle (`ties`, ascending): acute, of largest β. None when no acute
-/// triple is found (not a strict local maximum as far as this step can tell).
+/// exactly on the circle (`ties`, ascending, so ties.front() is the lowest index): acute, of
+/// largest β. None when no acute triple is found (not a strict local maximum as far as this
+/// step can tell).
 std::optional<std::array<std::size_t, 3>> contact_triple(std::span<const Point2> points,
                                                          const ExactCircle& circle,
                                                          std::array<std::size_t, 3> triple,
@@ -476,26 +476,30 @@ std::optional<std::array<std::size_t, 3>> contact_triple(std::span<const Point2>
   };
   consider(triple);
   if (ties.empty()) return best;
-  // The contact nearest in angle to each of 0°, 120°, 240° from the lowest-index contact.
-  std::vector<std::size_t> all(ties.begin(), ties.end());
-  all.insert(all.end(), triple.begin(), triple.end());
-  std::sort(all.begin(), all.end());
-  all.erase(std::unique(all.begin(), all.end()), all.end());
-  const Point2 a = points[all[0]];
-  const double a_angle = std::atan2(a.y - c.y, a.x - c.x);
-  std::array<std::size_t, 3> t{all[0], all[0], all[0]};
-  std::array<double, 3> off{0.0, 10.0, 10.0};
-  for (std::size_t i : all) {
-    const double ang = std::atan2(points[i].y - c.y, points[i].x - c.x) - a_angle;
-    for (std::size_t k = 1; k < 3; ++k) {
-      const double target = 2.0 * std::numbers::pi * static_cast<double>(k) / 3.0;
-      const double d = std::abs(std::remainder(ang - target, 2.0 * std::numbers::pi));
-      if (d < off[k]) {
-        off[k] = d;
-        t[k] = i;
+  // The contacts nearest in angle to 120° and 240° from the lowest-index contact a: all lie
+  // on one circle about c, so the largest dot product with the turned direction of a picks
+  // them (floating: a selection only, the triple is checked exactly).
+  std::size_t ia = std::min({triple[0], triple[1], triple[2], ties.front()});
+  const double ax = points[ia].x - c.x, ay = points[ia].y - c.y;
+  constexpr double kCos = -0.5, kSin = 0.8660254037844386;  // of 120°
+  const std::array<std::array<double, 2>, 2> target{
+      {{kCos * ax - kSin * ay, kSin * ax + kCos * ay},
+       {kCos * ax + kSin * ay, -kSin * ax + kCos * ay}}};
+  std::array<std::size_t, 3> t{ia, ia, ia};
+  std::array<double, 2> dot{-std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity()};
+  auto visit = [&](std::size_t i) {
+    const double x = points[i].x - c.x, y = points[i].y - c.y;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const double d = x * target[k][0] + y * target[k][1];
+      if (d > dot[k]) {
+        dot[k] = d;
+        t[k + 1] = i;
       }
     }
-  }
+  };
+  for (std::size_t i : ties) visit(i);
+  for (std::size_t i : triple) visit(i);
   consider(t);
   return best;
 }

@@ -37,7 +37,9 @@
 #include "internal/extremal_circle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <stdexcept>
@@ -224,8 +226,9 @@ ExactCircle exact_diametral_circle(Point2 a, Point2 b) {
   c.den = 2;
   c.nx = ax + bx;
   c.ny = ay + by;
-  const mpz_class ox = bx - ax, oy = by - ay;
-  c.r2num = ox * ox + oy * oy;
+  c.ox = bx - ax;  // centre − a = (b − a)/2, den = 2
+  c.oy = by - ay;
+  c.r2num = c.ox * c.ox + c.oy * c.oy;
   finish(c);
   return c;
 }
@@ -255,6 +258,8 @@ ExactCircle exact_circumcircle(Point2 a, Point2 b, Point2 cc) {
   c.nx = ax * d + ox;
   c.ny = ay * d + oy;
   c.r2num = ox * ox + oy * oy;
+  c.ox = std::move(ox);
+  c.oy = std::move(oy);
   finish(c);
   return c;
 }
@@ -316,10 +321,38 @@ void set_scaled(mpz_ptr out, double x, int e) {
   mpz_mul_2exp(out, out, static_cast<mp_bitcnt_t>(k - 53 - e));
 }
 
+/// Lowest set bit of a finite nonzero double: v = odd · 2^result.
+int low_bit_exponent(double v) {
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(v);
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
+  if (biased != 0) mantissa |= std::uint64_t{1} << 52;
+  return (biased != 0 ? biased : 1) - 1075 + std::countr_zero(mantissa);
+}
+
 /// Exact sign of |p − c*|² − R*² in the circle's integers: |P·den − N|² − r2num with
-/// P = p·2^−e (precondition: p's coordinates are multiples of 2^e). ~0.15 µs.
+/// P = p·2^−e (precondition: p's coordinates are multiples of 2^e). When p − support[0]
+/// is below 2^(53+e) (data of one magnitude: always), the offsets D = (p − a)·2^−e are
+/// exact machine integers and |D·den − o|² is formed with one-limb multipliers; otherwise
+/// the absolute form.
 int integer_side(const ExactCircle& circle, Point2 p) {
   thread_local TieScratch s;
+  const Point2 a = circle.support[0];
+  const int e = circle.exponent;
+  const double dx = p.x - a.x, dy = p.y - a.y;  // exact when the test below passes
+  const double sx = std::ldexp(dx, -e), sy = std::ldexp(dy, -e);
+  if ((p.x == 0.0 || low_bit_exponent(p.x) >= e) && (p.y == 0.0 || low_bit_exponent(p.y) >= e) &&
+      std::fabs(sx) < 0x1.0p53 && std::fabs(sy) < 0x1.0p53) {
+    // p and a lie on the 2^e grid, so p − a is a multiple of 2^e; below 2^(53+e) it is a
+    // double and its computed value exact (a rounded value would be ≥ 2^(53+e)).
+    mpz_mul_si(s.px, circle.den.get_mpz_t(), static_cast<long>(sx));
+    mpz_sub(s.px, s.px, circle.ox.get_mpz_t());
+    mpz_mul_si(s.py, circle.den.get_mpz_t(), static_cast<long>(sy));
+    mpz_sub(s.py, s.py, circle.oy.get_mpz_t());
+    mpz_mul(s.t, s.px, s.px);
+    mpz_addmul(s.t, s.py, s.py);
+    return mpz_cmp(s.t, circle.r2num.get_mpz_t());
+  }
   set_scaled(s.px, p.x, circle.exponent);
   set_scaled(s.py, p.y, circle.exponent);
   mpz_mul(s.px, s.px, circle.den.get_mpz_t());

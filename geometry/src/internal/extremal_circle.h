@@ -68,6 +68,8 @@ struct ExactCircle {
   int support_size = 0;
   std::array<Point2, 3> support{};
   mpz_class nx, ny, den, r2num;
+  /// The centre relative to the first support: (nx, ny) − support[0]·2^−e·den.
+  mpz_class ox, oy;
   int exponent = 0;
   Point2 center_d;             ///< c̃: each coordinate within 1.25 ulp of the exact value
   double radius = 0.0;         ///< within ~1 ulp of the exact radius (R*)

@@ -49,6 +49,16 @@
 // and certification still fails (near-ties, e.g. symmetric lobed data), the few points
 // within a small tolerance of the extreme radii are enumerated exactly (section 4).
 // Typical measured rings: one LP of ~5 pivots, one certification pass; 6% need a second.
+// Thin zones (issue 11: perfect circles, ulp-level forms — the zone narrower than 2¹²u·ρ,
+// ≈ 4e-11 mm at ρ = 85 mm, or the plain LP settling on an uncertified optimum): plain costs
+// ρ_i − s and squared distances carry ~u·ρ of rounding, as much as the zone itself, so the
+// LP switches to costs (ρ_i² − s²)/(ρ_i + s) and pricing powers |p − c0 − δ|² − s² with the
+// squares in double-double (internal/precise_distance.h) and a tolerance relative to the
+// costs; the containment pass places what its first filter cannot with the double-double
+// annulus (rigorous bound ~1e-30 of R²), so rational arithmetic is left to exact ties.
+// Exact ties (whole symmetric orbits on R* and r*): an annulus that holds every point but
+// whose quadruple does not alternate is certified through an alternating 2+2 among all its
+// contacts at the same centre (alternating_among_ties).
 //
 // ── 3. Global optimality: the sharpness argument ──────────────────────────────────────
 // With any origin, g_i(c) = |c − p_i|² − |c|² is affine in c, so

@@ -6,11 +6,23 @@
 // Against: the issue's target of all four circles plus the filter in < 100 µs at n = 3600 on
 // one core, cost growing about linearly with n. Fixed seeds; the profile is built once per
 // size outside the timed loop. Results and machine: docs/performance.md.
+//
+// Degenerate but valid inputs (issue 11, item 3), registered in main(): MZ, MI, MC and the
+// three verify() calls on a perfect circle (co-circular to the last ulp), an ulp-level form
+// (1e-13 mm), a smooth few-harmonic form (0.2, 0.15, 0.1 µm at orders 2, 3, 4), a polygon with
+// exact square symmetry (exact co-circular 8-tuples), integer points exactly on a circle,
+// and the noisy ring above as the yardstick — at n = 360, 3600, 10⁴. Against: the noisy
+// ring of the same size (within ~10×, no worse than O(n log n) growth).
 #include <benchmark/benchmark.h>
 
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "support/test_profiles.h"
+#include "vcmm/geometry/certificate.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/maximum_inscribed.h"
@@ -98,6 +110,83 @@ void BM_AllFourCirclesFiltered(benchmark::State& state) {
 }
 BENCHMARK(BM_AllFourCirclesFiltered)->Apply(sizes);
 
+// ---- degenerate families ----------------------------------------------------------------
+
+using Family = std::function<std::vector<g::Point2>(std::size_t)>;
+
+/// A ring of radius 85.5 mm about (600, 500) with r(θ) = R + s·(2 cos(2θ + 1) +
+/// 1.5 cos(3θ + 0.5) + cos 4θ)·1e-4 mm: s = 0 a perfect circle, s = 1 the smooth profile of
+/// the issue with phases whose MI contacts are nearly antipodal at all three sizes (the
+/// case that sent the MI fast path to the full Delaunay exhaustion).
+std::vector<g::Point2> smooth_ring(std::size_t n, double s) {
+  vcmm::test::RingSpec spec;
+  spec.center = {600.0, 500.0};
+  spec.n = n;
+  if (s > 0.0) spec.harmonics = {{2, 2e-4 * s, 1.0}, {3, 1.5e-4 * s, 0.5}, {4, 1e-4 * s, 0.0}};
+  return vcmm::test::ring_profile(spec);
+}
+
+const std::vector<std::pair<std::string, Family>>& families() {
+  static const std::vector<std::pair<std::string, Family>> f = {
+      {"perfect", [](std::size_t n) { return smooth_ring(n, 0.0); }},
+      {"ulp_form", [](std::size_t n) { return smooth_ring(n, 5e-10); }},  // 1e-13 mm
+      {"smooth", [](std::size_t n) { return smooth_ring(n, 1.0); }},
+      {"symmetric_polygon", [](std::size_t n) { return vcmm::test::symmetric_polygon(n); }},
+      {"lattice_circle", [](std::size_t n) { return vcmm::test::lattice_circle(n); }},
+      {"noisy", [](std::size_t n) { return vcmm::test::lobed_noisy_ring(n, 20261122, 5e-5); }},
+  };
+  return f;
+}
+
+/// Registers name/n for n = 360, 3600 and 10⁴; `run(points, state)` holds the timed loop
+/// (the profile is built outside it).
+template <class Run>
+void register_sizes(const std::string& name, const Family& make, Run run) {
+  for (const std::size_t n : {std::size_t{360}, std::size_t{3600}, std::size_t{10000}}) {
+    benchmark::RegisterBenchmark((name + "/" + std::to_string(n)).c_str(),
+                                 [make, run, n](benchmark::State& state) { run(make(n), state); })
+        ->Unit(benchmark::kMicrosecond);
+  }
+}
+
+template <class Fit>
+void register_fit(const std::string& name, const Family& make, Fit fit) {
+  register_sizes(name, make, [fit](const std::vector<g::Point2>& p, benchmark::State& state) {
+    for (auto _ : state) benchmark::DoNotOptimize(fit(p));
+  });
+}
+
+/// verify() of a result computed once outside the timed loop.
+template <class Fit>
+void register_verify(const std::string& name, const Family& make, Fit fit) {
+  register_sizes(name, make, [fit](const std::vector<g::Point2>& p, benchmark::State& state) {
+    const auto result = fit(p);
+    if (!g::verify(p, result)) state.SkipWithError("rejected");
+    for (auto _ : state) benchmark::DoNotOptimize(g::verify(p, result).valid);
+  });
+}
+
+void register_degenerate() {
+  auto mz = [](const std::vector<g::Point2>& p) { return g::minimum_zone_circle(p); };
+  auto mi = [](const std::vector<g::Point2>& p) { return g::maximum_inscribed_circle(p); };
+  auto mc = [](const std::vector<g::Point2>& p) { return g::minimum_circumscribed_circle(p); };
+  for (const auto& [family, make] : families()) {
+    register_fit("Degenerate_MZ/" + family, make, mz);
+    register_fit("Degenerate_MI/" + family, make, mi);
+    register_fit("Degenerate_MC/" + family, make, mc);
+    register_verify("Degenerate_VerifyMZ/" + family, make, mz);
+    register_verify("Degenerate_VerifyMI/" + family, make, mi);
+    register_verify("Degenerate_VerifyMC/" + family, make, mc);
+  }
+}
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  register_degenerate();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -81,6 +81,15 @@
 //     |e|² ≤ 4 r*² cannot beat r* (ρ ≤ min(t, 1 − t)|e|). The envelope is computed
 //     exactly (sorted slopes, convex-hull trick) for the longer edges only.
 //
+// (6) Exact squared distances, integers only. With the rational centre c = (X, Y)/D over one
+//     denominator (D > 0; X, Y, D integers) and s ≥ 0 such that p·2^s and q·2^s are
+//     integral (doubles are dyadic),
+//       |p − c|² = G_s(p) / (D² 4^s),   G_s(p) = (P_x D − X 2^s)² + (P_y D − Y 2^s)²,  P = p·2^s,
+//     so sign(|p − c|² − |q − c|²) = sign(G_s(p) − G_s(q)): GMP integer products and no
+//     gcd (a canonicalised rational costs several times more). Every threshold the checks
+//     compare distances with is the squared distance to an input point (a contact), so the
+//     interval filter's undecided cases — all points, on perfect circles — take this path.
+//
 // Tolerances on reported doubles: the exact values are rounded once by a correct fitter,
 // but the rounding of the centre alone moves every derived length by up to ~1.5 ulp of the
 // largest coordinate, so all tolerances are in ulps of scale = max(|c_x|, |c_y|, R):
@@ -93,12 +102,14 @@
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Interval_nt.h>
 #include <CGAL/convex_hull_2.h>
+#include <gmp.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -217,24 +228,92 @@ bool strictly_alternate(const QPoint& u1, const QPoint& u2, const QPoint& v1,
 
 IA to_ia(const Q& q) { return IA(CGAL::to_interval(q)); }
 
+/// Exact squared distances from a rational centre, as integers over one denominator
+/// (derivation (6)): no rational arithmetic (and no gcd) per point.
+class CentreDistances {
+ public:
+  explicit CentreDistances(const QPoint& c) {
+    mpz_inits(X_, Y_, D_, px_, py_, t_, ref_, nullptr);
+    mpz_lcm(D_, c.x.get_den_mpz_t(), c.y.get_den_mpz_t());
+    mpz_divexact(X_, D_, c.x.get_den_mpz_t());
+    mpz_mul(X_, X_, c.x.get_num_mpz_t());
+    mpz_divexact(Y_, D_, c.y.get_den_mpz_t());
+    mpz_mul(Y_, Y_, c.y.get_num_mpz_t());
+  }
+  ~CentreDistances() { mpz_clears(X_, Y_, D_, px_, py_, t_, ref_, nullptr); }
+  CentreDistances(const CentreDistances&) = delete;
+  CentreDistances& operator=(const CentreDistances&) = delete;
+
+  /// sign(|p − c|² − |q − c|²), exactly.
+  int compare(Point2 p, Point2 q) {
+    const long s = std::max(shift_of(p), shift_of(q));
+    numerator(q, s, ref_);
+    numerator(p, s, t_);
+    return mpz_cmp(t_, ref_) > 0 ? 1 : (mpz_cmp(t_, ref_) < 0 ? -1 : 0);
+  }
+
+ private:
+  /// Least s ≥ 0 with p·2^s integral.
+  static long shift_of(Point2 p) {
+    long s = 0;
+    for (const double v : {p.x, p.y}) {
+      if (v == 0.0) continue;
+      int k = 0;
+      (void)std::frexp(v, &k);
+      s = std::max(s, 53L - k);
+    }
+    return s;
+  }
+  /// v·2^s as an integer (v a multiple of 2^−s).
+  static void set_scaled(mpz_ptr out, double v, long s) {
+    int k = 0;
+    const double m = std::frexp(v, &k);
+    mpz_set_d(out, std::ldexp(m, 53));  // exact: a 53-bit integer
+    const long e = k - 53 + s;
+    if (e >= 0) mpz_mul_2exp(out, out, static_cast<mp_bitcnt_t>(e));
+    else mpz_tdiv_q_2exp(out, out, static_cast<mp_bitcnt_t>(-e));  // exact: low bits are 0
+  }
+  /// G(p) = (P_x D − X 2^s)² + (P_y D − Y 2^s)², P = p·2^s.
+  void numerator(Point2 p, long s, mpz_ptr out) {
+    set_scaled(px_, p.x, s);
+    mpz_mul(px_, px_, D_);
+    mpz_mul_2exp(out, X_, static_cast<mp_bitcnt_t>(s));
+    mpz_sub(px_, px_, out);
+    set_scaled(py_, p.y, s);
+    mpz_mul(py_, py_, D_);
+    mpz_mul_2exp(out, Y_, static_cast<mp_bitcnt_t>(s));
+    mpz_sub(py_, py_, out);
+    mpz_mul(out, px_, px_);
+    mpz_addmul(out, py_, py_);
+  }
+
+  mpz_t X_, Y_, D_, px_, py_, t_, ref_;
+};
+
 /// A rational circle with its interval enclosure, for filtered distance comparisons.
 struct FilteredCircle {
   QPoint c;
   IA cx;
   IA cy;
+  /// The exact stage, built on first use (only near-ties need it).
+  CentreDistances& exact() const {
+    if (!exact_) exact_ = std::make_unique<CentreDistances>(c);
+    return *exact_;
+  }
+  mutable std::unique_ptr<CentreDistances> exact_;
 };
 
-FilteredCircle filtered(const QPoint& c) { return {c, to_ia(c.x), to_ia(c.y)}; }
+FilteredCircle filtered(const QPoint& c) { return {c, to_ia(c.x), to_ia(c.y), nullptr}; }
 
-/// sign(|c − p|² − t), interval first, exact when the interval straddles zero.
-int compare_distance2(Point2 p, const FilteredCircle& fc, const Q& t, const IA& t_ia) {
+/// sign(|c − p|² − |c − ref|²), t_ia enclosing |c − ref|²: interval first, exact integers
+/// (CentreDistances) when the interval straddles zero.
+int compare_distance2(Point2 p, const FilteredCircle& fc, Point2 ref, const IA& t_ia) {
   const IA dx = IA(p.x) - fc.cx;
   const IA dy = IA(p.y) - fc.cy;
   const IA d = dx * dx + dy * dy - t_ia;
   if (d.inf() > 0.0) return 1;
   if (d.sup() < 0.0) return -1;
-  const QPoint q = to_q(p);
-  return sgn(norm2(q - fc.c) - t);
+  return fc.exact().compare(p, ref);
 }
 
 /// max_p |c − p|² (want_max) or min_p |c − p|², exact, with an interval pre-selection.
@@ -248,13 +327,17 @@ Q extreme_distance2(std::span<const Point2> points, const FilteredCircle& fc, bo
     d[k] = dx * dx + dy * dy;
     bound = want_max ? std::max(bound, d[k].inf()) : std::min(bound, d[k].sup());
   }
-  std::optional<Q> best;
+  std::optional<std::size_t> best;
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (want_max ? d[k].sup() < bound : d[k].inf() > bound) continue;
-    const Q v = norm2(to_q(points[k]) - fc.c);
-    if (!best || (want_max ? v > *best : v < *best)) best = v;
+    if (!best) {
+      best = k;
+      continue;
+    }
+    const int s = fc.exact().compare(points[k], points[*best]);
+    if (want_max ? s > 0 : s < 0) best = k;
   }
-  return best.value_or(Q(0));
+  return best ? norm2(to_q(points[*best]) - fc.c) : Q(0);
 }
 
 /// Orientation of (a, b, c) with rational c, filtered.
@@ -540,7 +623,7 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
       const IA r2i = to_ia(r2);
       bool all_on = true;
       for (const Point2& p : pts) {
-        if (compare_distance2(p, fc, r2, r2i) != 0) {
+        if (compare_distance2(p, fc, hull[0], r2i) != 0) {
           all_on = false;
           break;
         }
@@ -621,8 +704,8 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
         const IA o2i = to_ia(outer2), i2i = to_ia(inner2);
         bool contained = true;
         for (std::size_t k = 0; k < pts.size() && contained; ++k)
-          contained = compare_distance2(pts[k], fc, outer2, o2i) <= 0 &&
-                      compare_distance2(pts[k], fc, inner2, i2i) >= 0;
+          contained = compare_distance2(pts[k], fc, o1, o2i) <= 0 &&
+                      compare_distance2(pts[k], fc, ie.a, i2i) >= 0;
         if (!contained) continue;
         std::ostringstream os;
         os.precision(17);
@@ -651,7 +734,7 @@ Verification verify_zero_width(std::span<const Point2> points, const MinimumZone
   const FilteredCircle fc = filtered(*c);
   const IA r2i = to_ia(r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, r2, r2i) != 0)
+    if (compare_distance2(points[k], fc, points[a[0]], r2i) != 0)
       return fail(what, index_name("point", k) + " is not on the circle of the contacts");
   }
   const double scale = scale_of(*c, r2);
@@ -697,9 +780,9 @@ Verification verify(std::span<const Point2> points, const MinimumZoneCircle& mz)
   const FilteredCircle fc = filtered(*c);
   const IA o2i = to_ia(zone.outer2), i2i = to_ia(zone.inner2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, zone.outer2, o2i) > 0)
+    if (compare_distance2(points[k], fc, points[io1], o2i) > 0)
       return fail(what, index_name("point", k) + " lies outside the outer circle");
-    if (compare_distance2(points[k], fc, zone.inner2, i2i) < 0)
+    if (compare_distance2(points[k], fc, points[ii1], i2i) < 0)
       return fail(what, index_name("point", k) + " lies inside the inner circle");
   }
   if (!strictly_alternate(o1 - *c, o2 - *c, i1 - *c, i2 - *c)) {
@@ -790,7 +873,7 @@ Verification verify(std::span<const Point2> points, const MinimumCircumscribedCi
   const FilteredCircle fc = filtered(c);
   const IA r2i = to_ia(r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, r2, r2i) > 0)
+    if (compare_distance2(points[k], fc, points[idx[0]], r2i) > 0)
       return fail(what, index_name("point", k) + " lies outside the circle");
   }
   const double u = ulp_of(scale_of(c, r2));
@@ -951,7 +1034,7 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
   const FilteredCircle fc = filtered(c);
   const IA r2i = to_ia(r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, r2, r2i) < 0)
+    if (compare_distance2(points[k], fc, points[idx[0]], r2i) < 0)
       return fail(what, index_name("point", k) + " lies strictly inside the circle");
   }
   // Centre on an edge (then a diameter) of the contact triangle: a strict local maximum
@@ -963,7 +1046,7 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
     const int third = orientation(to_q(p0), to_q(p1), to_q(points[idx[(e + 2) % 3]]));
     bool witness = false;
     for (std::size_t k = 0; k < points.size() && !witness; ++k) {
-      if (compare_distance2(points[k], fc, r2, r2i) != 0) continue;
+      if (compare_distance2(points[k], fc, points[idx[0]], r2i) != 0) continue;
       witness = orientation(to_q(p0), to_q(p1), to_q(points[k])) == -third;
     }
     if (!witness) {

@@ -58,6 +58,7 @@
 
 #include "internal/exact.h"
 #include "internal/extremal_circle.h"
+#include "internal/precise_distance.h"
 #include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
@@ -131,12 +132,18 @@ class Welzl {
         return pt_[k] != pt_[d.pos[0]];
       case 2:
         return internal::dot_sign(pt_[k], pt_[d.pos[0]], pt_[d.pos[1]]) > 0;
-      default:
+      default: {
         if (d.orientation == CGAL::COLLINEAR)
           d.orientation = CGAL::orientation(ep_[d.pos[0]], ep_[d.pos[1]], ep_[d.pos[2]]);
+        // Floating stages first (near-co-circular candidates defeat CGAL's static filter
+        // and would all go to its exact arithmetic), CGAL's exact predicate for the ties.
+        const int s = internal::filtered_incircle(pt_[d.pos[0]], pt_[d.pos[1]],
+                                                  pt_[d.pos[2]], pt_[k]);
+        if (s != 2) return s != 0 && (s < 0) == (d.orientation == CGAL::COUNTERCLOCKWISE);
         return internal::side_of_circumcircle(ep_[d.pos[0]], ep_[d.pos[1]], ep_[d.pos[2]],
                                               d.orientation,
                                               ep_[k]) == CGAL::ON_UNBOUNDED_SIDE;
+      }
     }
   }
 
@@ -264,6 +271,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
   if (set.size() < 2) set.push_back(0);  // degenerate warm start; the loop repairs it
 
   std::vector<std::size_t> violators, on_circle, flagged;
+  std::vector<std::pair<double, std::size_t>> violator_keys;
   flagged.reserve(1024);  // a first round on a sparse sample flags a few hundred points
   violators.reserve(1024);
   set.reserve(set.size() + 256);
@@ -291,38 +299,47 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
         points, cd, circle.scale, lo, flagged);
     nearest = scan.index;
     nearest_d2 = scan.d2;
+    // Violators with a ranking key: how far outside (scaled squared units) — the double-
+    // double gap where the second stage ran (points within ~1e-15 of the radius, where
+    // plain squared distances cannot rank them), else the first stage's value.
+    violator_keys.clear();
+    const double r2s = circle.radius_scaled * circle.radius_scaled;
     for (std::size_t i : flagged) {
-      if (circle.filter_usable &&
-          internal::scaled_distance2(points[i], cd, circle.scale) > circle.outside_above) {
-        violators.push_back(i);
+      const double d2 = internal::scaled_distance2(points[i], cd, circle.scale);
+      if (circle.filter_usable && d2 > circle.outside_above) {
+        violator_keys.push_back({d2 - r2s, i});
         continue;
       }
       ++exact_calls;
-      const CGAL::Bounded_side side = internal::exact_side(circle, points[i]);
-      if (side == CGAL::ON_UNBOUNDED_SIDE) violators.push_back(i);
+      double gap = d2 - r2s;
+      const CGAL::Bounded_side side = internal::exact_side(circle, points[i], &gap);
+      if (side == CGAL::ON_UNBOUNDED_SIDE) violator_keys.push_back({gap, i});
       if (side == CGAL::ON_BOUNDARY) on_circle.push_back(i);
     }
-    if (violators.empty()) break;
+    if (violator_keys.empty()) break;
     // Many violators (a sparse first sample of a dense profile): keep the farthest one per
     // pseudo-angle sector about the current centre — S stays small, every direction that
     // has violators keeps its extreme one, and at least one violator is added (progress).
-    if (violators.size() > 64) {
+    violators.clear();
+    if (violator_keys.size() > 64) {
       std::array<double, 64> far;
-      far.fill(-1.0);
+      far.fill(-std::numeric_limits<double>::infinity());
       std::array<std::size_t, 64> far_idx{};
-      for (std::size_t i : violators) {
+      std::array<bool, 64> used{};
+      for (const auto& [key, i] : violator_keys) {
         const double dx = points[i].x - cd.x, dy = points[i].y - cd.y;
-        const double d2 = internal::scaled_distance2(points[i], cd, circle.scale);
         auto sct = static_cast<std::size_t>(internal::pseudo_angle(dx, dy) * 16.0);
         if (sct > 63) sct = 63;
-        if (d2 > far[sct]) {
-          far[sct] = d2;
+        if (!used[sct] || key > far[sct]) {
+          used[sct] = true;
+          far[sct] = key;
           far_idx[sct] = i;
         }
       }
-      violators.clear();
       for (std::size_t k = 0; k < 64; ++k)
-        if (far[k] >= 0.0) violators.push_back(far_idx[k]);
+        if (used[k]) violators.push_back(far_idx[k]);
+    } else {
+      for (const auto& [key, i] : violator_keys) violators.push_back(i);
     }
     set.insert(set.end(), violators.begin(), violators.end());
     order_center = cd;

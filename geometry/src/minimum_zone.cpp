@@ -49,6 +49,16 @@
 // and certification still fails (near-ties, e.g. symmetric lobed data), the few points
 // within a small tolerance of the extreme radii are enumerated exactly (section 4).
 // Typical measured rings: one LP of ~5 pivots, one certification pass; 6% need a second.
+// Thin zones (issue 11: perfect circles, ulp-level forms — the zone narrower than 2¹²u·ρ,
+// ≈ 4e-11 mm at ρ = 85 mm, or the plain LP settling on an uncertified optimum): plain costs
+// ρ_i − s and squared distances carry ~u·ρ of rounding, as much as the zone itself, so the
+// LP switches to costs (ρ_i² − s²)/(ρ_i + s) and pricing powers |p − c0 − δ|² − s² with the
+// squares in double-double (internal/precise_distance.h) and a tolerance relative to the
+// costs; the containment pass places what its first filter cannot with the double-double
+// annulus (rigorous bound ~1e-30 of R²), so rational arithmetic is left to exact ties.
+// Exact ties (whole symmetric orbits on R* and r*): an annulus that holds every point but
+// whose quadruple does not alternate is certified through an alternating 2+2 among all its
+// contacts at the same centre (alternating_among_ties).
 //
 // ── 3. Global optimality: the sharpness argument ──────────────────────────────────────
 // With any origin, g_i(c) = |c − p_i|² − |c|² is affine in c, so
@@ -140,9 +150,11 @@
 #include <vector>
 
 #include "internal/exact.h"
+#include "internal/extremal_circle.h"
 #include "internal/minimum_zone_common.h"
 #include "internal/minimum_zone_exact.h"
 #include "internal/minimum_zone_overlay.h"
+#include "internal/precise_distance.h"
 #include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
@@ -172,6 +184,10 @@ constexpr std::size_t kBlocks = 32;
 constexpr std::size_t kStartSample = 1024;
 /// Near-tie sets for the repair step: at most this many points per side.
 constexpr std::size_t kMaxRepair = 6;
+/// Pricing switches to double-double powers when the model's zone is narrower than this
+/// many u·ρ: plain squared distances carry ~3u·ρ² of rounding (~1.5u·ρ in radius), so below
+/// ~2¹²u·ρ (4e-11 mm at ρ = 85 mm) they no longer rank the extreme points reliably.
+constexpr double kPrecisePricing = 4096.0;
 
 
 struct Quad {
@@ -224,8 +240,19 @@ struct Candidate {
     return *exact_;
   }
 
+  /// The annulus with double-double centre and radii² for the second-stage filter
+  /// (computed on first use: only points the first stage cannot place need it).
+  const internal::RoundedAnnulus& precise() const {
+    if (!precise_) {
+      precise_ = internal::rounded_annulus(points, quad.outer, quad.inner, true);
+      if (!precise_) precise_ = internal::RoundedAnnulus{};  // unusable (cannot happen)
+    }
+    return *precise_;
+  }
+
  private:
   mutable std::optional<ExactAnnulus> exact_;
+  mutable std::optional<internal::RoundedAnnulus> precise_;
 };
 
 /// One ulp of v: a generous bound on the error of a nearest double (at most half an ulp).
@@ -331,6 +358,20 @@ bool is_strictly_alternating(std::span<const Point2> points, const Candidate& k)
 
 // ───────────────────────────── containment pass ─────────────────────────────────────────
 
+/// Exact place of p with respect to the closed annulus of `k`: +1 strictly outside R*,
+/// −1 strictly inside r*, 0 in the closed annulus. The double-double filter
+/// (internal/precise_distance.h) decides all but the exact ties (contacts, co-circular
+/// points), which get the rational comparison.
+int annulus_side(const Candidate& k, Point2 p) {
+  const int s = internal::precise_annulus_side(k.precise().outer_precise,
+                                               k.precise().inner_precise, p);
+  if (s != 2) return s;
+  const Rational d2 = internal::squared_distance(internal::to_rational(p), k.exact().center);
+  if (d2 > k.exact().outer_sq) return 1;
+  if (d2 < k.exact().inner_sq) return -1;
+  return 0;
+}
+
 struct PassResult {
   bool contains = true;
   /// Points the floating filter could not place (ascending): the contacts, their duplicates
@@ -355,6 +396,7 @@ bool same_point_as_contact(std::span<const Point2> points, const Quad& q, Point2
 /// the mean circle.
 PassResult containment_pass(std::span<const Point2> points, const Candidate& k) {
   PassResult out;
+
   // |p − c*| ≤ √(s/(1 − 4u)) + dc with s the computed |p − ĉ|²; thresholds on s with every
   // rounding covered (factors 8u, 16u are generous).
   const double Rl = k.R_lo * (1.0 - 8.0 * kU) - k.dc;
@@ -428,9 +470,7 @@ PassResult containment_pass(std::span<const Point2> points, const Candidate& k) 
   }
   for (std::size_t i : ambiguous) {
     if (same_point_as_contact(points, k.quad, points[i])) continue;  // on by construction
-    const Rational d2 = internal::squared_distance(internal::to_rational(points[i]),
-                                                   k.exact().center);
-    if (d2 > k.exact().outer_sq || d2 < k.exact().inner_sq) {
+    if (annulus_side(k, points[i]) != 0) {
       out.contains = false;
       break;
     }
@@ -443,11 +483,77 @@ bool contains_points(std::span<const Point2> points, const Candidate& k,
                      std::span<const std::size_t> which) {
   for (std::size_t i : which) {
     if (same_point_as_contact(points, k.quad, points[i])) continue;
-    const Rational d2 = internal::squared_distance(internal::to_rational(points[i]),
-                                                   k.exact().center);
-    if (d2 > k.exact().outer_sq || d2 < k.exact().inner_sq) return false;
+    if (annulus_side(k, points[i]) != 0) return false;
   }
   return true;
+}
+
+// ───────────────────────────── exact ties: many contacts ───────────────────────────────
+
+/// +1 when p lies exactly on the outer circle of k, −1 exactly on the inner one, 0 otherwise.
+int boundary_of(const Candidate& k, Point2 p) {
+  const internal::RoundedAnnulus& a = k.precise();
+  const internal::PreciseValue o = internal::precise_power_gap(a.outer_precise, p);
+  const bool maybe_outer = !a.outer_precise.usable || internal::sign_of(o) == 0;
+  const internal::PreciseValue i = internal::precise_power_gap(a.inner_precise, p);
+  const bool maybe_inner = !a.inner_precise.usable || internal::sign_of(i) == 0;
+  if (!maybe_outer && !maybe_inner) return 0;
+  const Rational d2 = internal::squared_distance(internal::to_rational(p), k.exact().center);
+  if (maybe_outer && d2 == k.exact().outer_sq) return 1;
+  if (maybe_inner && d2 == k.exact().inner_sq) return -1;
+  return 0;
+}
+
+/// Section 4, exact ties (e.g. an 8-fold symmetric polygon: whole orbits exactly on R* or
+/// r*): the annulus of k holds every point but its own quadruple does not alternate. At its
+/// centre every tied point is a contact; if some outer and inner contacts alternate, any
+/// 2+2 of them gives the same centre (alternation makes the bisectors cross) and certifies
+/// it. Rule: contacts in counter-clockwise order from the direction of k's first outer
+/// contact, grouped in runs of one kind (lowest index kept per run); the first four runs
+/// alternate by construction. The exact alternation test of the new quadruple decides.
+std::optional<Quad> alternating_among_ties(std::span<const Point2> points, const Candidate& k,
+                                           const PassResult& pass) {
+  struct Contact {
+    std::size_t index;
+    bool outer;
+  };
+  std::vector<Contact> contacts;
+  auto add = [&](std::size_t i, bool outer) {
+    for (const Contact& t : contacts)
+      if (points[t.index] == points[i]) return;  // duplicates: the first (lowest) index
+    contacts.push_back({i, outer});
+  };
+  for (std::size_t i : {k.quad.outer[0], k.quad.outer[1]}) add(i, true);
+  for (std::size_t i : {k.quad.inner[0], k.quad.inner[1]}) add(i, false);
+  for (std::size_t i : pass.ambiguous) {
+    const int b = boundary_of(k, points[i]);
+    if (b != 0) add(i, b > 0);
+  }
+  // Counter-clockwise from a = the first outer contact's direction: half-turn first.
+  const Point2 a = points[k.quad.outer[0]];
+  auto half = [&](Point2 x) {
+    const int s = cross_sign(k, a, x);
+    return (s > 0 || (s == 0 && dot_sign(k, a, x) > 0)) ? 0 : 1;
+  };
+  std::sort(contacts.begin(), contacts.end(), [&](const Contact& x, const Contact& y) {
+    const Point2 px = points[x.index], py = points[y.index];
+    const int hx = half(px), hy = half(py);
+    if (hx != hy) return hx < hy;
+    const int s = cross_sign(k, px, py);
+    if (s != 0) return s > 0;
+    return x.index < y.index;
+  });
+  std::vector<Contact> runs;  // first contact of each run of one kind
+  for (const Contact& t : contacts)
+    if (runs.empty() || runs.back().outer != t.outer) runs.push_back(t);
+  if (runs.size() > 1 && runs.front().outer == runs.back().outer) runs.pop_back();  // cyclic
+  if (runs.size() < 4) return std::nullopt;
+  Quad q;
+  q.outer = runs[0].outer ? std::array{runs[0].index, runs[2].index}
+                          : std::array{runs[1].index, runs[3].index};
+  q.inner = runs[0].outer ? std::array{runs[1].index, runs[3].index}
+                          : std::array{runs[0].index, runs[2].index};
+  return q;
 }
 
 // ───────────────────────────── sharpness argument (section 3) ───────────────────────────
@@ -627,11 +733,21 @@ std::optional<std::array<std::size_t, 3>> cocircular_triple(std::span<const Poin
     ++k;
   if (k == n) return std::nullopt;
   const EPoint c = internal::to_epick(points[k]);
+  // Almost always the first other point decides (CGAL's static filter); once one lies on
+  // the circle, the rest are tested against the circle's own exact representation
+  // (double-double filter, then its integers: ~5× cheaper than a full in-circle predicate
+  // on exact ties, which is what every point of co-circular data is).
+  std::optional<internal::ExactCircle> circle;
   for (std::size_t i = 1; i < n; ++i) {
     if (i == j || i == k) continue;
-    if (CGAL::side_of_bounded_circle(a, b, c, internal::to_epick(points[i])) !=
-        CGAL::ON_BOUNDARY)
-      return std::nullopt;
+    if (!circle) {
+      if (CGAL::side_of_oriented_circle(a, b, c, internal::to_epick(points[i])) !=
+          CGAL::ON_ORIENTED_BOUNDARY)
+        return std::nullopt;
+      circle = internal::exact_circumcircle(points[0], points[j], points[k]);
+      continue;
+    }
+    if (internal::exact_side(*circle, points[i]) != CGAL::ON_BOUNDARY) return std::nullopt;
   }
   return std::array<std::size_t, 3>{0, j, k};
 }
@@ -733,20 +849,21 @@ class ChebyshevLp {
   LpStatus solve(Point2 c0) {
     c0_ = c0;
     rho_min_ = std::numeric_limits<double>::infinity();
-    double rho_max = 0.0;
+    rho_max_ = 0.0;
     for (Entry& e : entries_) {
       const double dx = c0.x - points_[e.column.point].x, dy = c0.y - points_[e.column.point].y;
       e.rho = std::sqrt(dx * dx + dy * dy);
       e.ex = e.rho > 0.0 ? dx / e.rho : 0.0;
       e.ey = e.rho > 0.0 ? dy / e.rho : 0.0;
       rho_min_ = std::min(rho_min_, e.rho);
-      rho_max = std::max(rho_max, e.rho);
+      rho_max_ = std::max(rho_max_, e.rho);
     }
-    shift_ = 0.5 * (rho_min_ + rho_max);
-    for (Entry& e : entries_) e.rho -= shift_;
-    // ρ is rounded to ½ ulp; the reduced costs lose a few more ulps to cancellation. Ties
-    // below this are left to the exact stage.
-    tol_ = 64.0 * kU * std::max(1.0, rho_max);
+    shift_ = 0.5 * (rho_min_ + rho_max_);
+    cost_scale_ = 0.0;
+    for (Entry& e : entries_) {
+      e.rho = shifted_cost(e.column.point, e.rho);
+      cost_scale_ = std::max(cost_scale_, std::abs(e.rho));
+    }
     if (!(have_basis_ && set_basis(basis_))) {
       if (!degenerate_start()) return LpStatus::failed;
     }
@@ -754,27 +871,78 @@ class ChebyshevLp {
     for (int pivots = 0; pivots < 1000; ++pivots) {
       const int step = pivot(degenerate_run > 8);
       if (step < 0) return LpStatus::failed;
-      if (step == 0) return LpStatus::optimal;  // optimal on the candidates
+      if (step == 0) break;  // optimal on the candidates
       degenerate_run = (step == 2) ? degenerate_run + 1 : 0;
+      if (pivots == 999) return LpStatus::failed;
     }
-    return LpStatus::failed;
+    // Thin zones: plain costs and squared distances (rounded to ~1.5u·ρ) cannot rank the
+    // points any more; costs and pricing switch to double-double (internal/
+    // precise_distance.h) for good, from the next solve on.
+    precise_ = precise_ || width() < kPrecisePricing * kU * rho_max_;
+    return LpStatus::optimal;
   }
 
   /// Adds each block's farthest / nearest point at c0 + δ when it lies outside the model's
   /// annulus (by more than the tolerance); returns how many columns were added. One pass
-  /// over all points: squared distances only.
+  /// over all points: squared distances only (double-double powers on thin zones).
   int full_pricing() {
     const Point2 c{c0_.x - y_[0], c0_.y - y_[1]};
-    const double R = y_[2] + shift_ + tol_, r = std::max(0.0, -y_[3] + shift_ - tol_);
-    const double R2 = R * R, r2 = r * r;
+    const double tol = tolerance();
     const std::size_t n = points_.size(), blocks = block_count();
     int added = 0;
+    if (precise_) {
+      // Powers |p − c|² − s² against the model's (R² − s², r² − s²), s = shift: with
+      // R = s + y₂ + tol, R² − s² = (y₂ + tol)(y₂ + tol + 2s), likewise for r. The centre
+      // c0 + δ is not rounded (a rounding of ~1e-13 mm would be the zone's own size):
+      // |p − c0 − δ|² = |p − c0|² + 2(c0 − p)·δ + |δ|² exactly, the first term in
+      // double-double, the others (≪ the first) in double.
+      const double ro = y_[2] + tol, ri = -y_[3] - tol;
+      const double g_out = ro * (ro + 2.0 * shift_), g_in = ri * (ri + 2.0 * shift_);
+      const double dx = -y_[0], dy = -y_[1], d2 = dx * dx + dy * dy;
+      for (std::size_t b = 0; b < blocks; ++b) {
+        std::size_t imax = b * n / blocks, imin = imax;
+        double gmax = -std::numeric_limits<double>::infinity(), gmin = -gmax;
+        for (std::size_t i = b * n / blocks; i < (b + 1) * n / blocks; ++i) {
+          const Point2 p = points_[i];
+          const double g = internal::precise_power(p, c0_, shift_) +
+                           2.0 * ((c0_.x - p.x) * dx + (c0_.y - p.y) * dy) + d2;
+          if (g > gmax) {
+            gmax = g;
+            imax = i;
+          }
+          if (g < gmin) {
+            gmin = g;
+            imin = i;
+          }
+        }
+        if (gmax > g_out && add_candidate({imax, true})) ++added;
+        if (gmin < g_in && add_candidate({imin, false})) ++added;
+      }
+      return added;
+    }
+    const double R = y_[2] + shift_ + tol, r = std::max(0.0, -y_[3] + shift_ - tol);
+    const double R2 = R * R, r2 = r * r;
     for (std::size_t b = 0; b < blocks; ++b) {
       const BlockExtremes e = block_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
       if (e.smax > R2 && add_candidate({e.imax, true})) ++added;
       if (e.smin < r2 && add_candidate({e.imin, false})) ++added;
     }
     return added;
+  }
+
+  /// Switches costs and pricing to double-double (from the next solve on); false when they
+  /// already are.
+  bool escalate_precision() {
+    if (precise_) return false;
+    precise_ = true;
+    return true;
+  }
+
+  /// True once, when the zone has just been found thin (pricing became precise).
+  bool first_precise_round() {
+    const bool first = precise_ && !precise_announced_;
+    precise_announced_ = precise_announced_ || precise_;
+    return first;
   }
 
   Point2 delta() const { return {-y_[0], -y_[1]}; }
@@ -812,12 +980,32 @@ class ChebyshevLp {
     Entry e;
     e.column = c;
     const double dx = c0_.x - points_[c.point].x, dy = c0_.y - points_[c.point].y;
-    e.rho = std::sqrt(dx * dx + dy * dy);
-    e.ex = e.rho > 0.0 ? dx / e.rho : 0.0;
-    e.ey = e.rho > 0.0 ? dy / e.rho : 0.0;
-    e.rho -= shift_;
+    const double rho = std::sqrt(dx * dx + dy * dy);
+    e.ex = rho > 0.0 ? dx / rho : 0.0;
+    e.ey = rho > 0.0 ? dy / rho : 0.0;
+    e.rho = shifted_cost(c.point, rho);
+    cost_scale_ = std::max(cost_scale_, std::abs(e.rho));
     entries_.push_back(e);
     return true;
+  }
+
+  /// ρ − s for the point at distance ρ from c0, s = shift. Thin zones: (ρ² − s²)/(ρ + s)
+  /// with the numerator in double-double, so the costs keep their ~1e-16 relative
+  /// differences (a plain ρ − s rounds them away on perfect circles and ulp-level forms);
+  /// otherwise the plain difference, whose ~u·ρ error is far below the zone.
+  double shifted_cost(std::size_t point, double rho) const {
+    if (!precise_) return rho - shift_;
+    const double den = rho + shift_;
+    return den > 0.0 ? internal::precise_power(points_[point], c0_, shift_) / den : 0.0;
+  }
+
+  /// Ties below the costs' resolution are left to the exact stage. Plain costs carry ~u·ρ:
+  /// 64u·ρ_max. Precise costs: reduced costs are sums of a cost (≤ cost_scale_) and products
+  /// of unit directions with y, each rounded: 64u of their magnitudes, plus the costs' own
+  /// error (a few u² of ρ).
+  double tolerance() const {
+    if (!precise_) return 64.0 * kU * std::max(1.0, rho_max_);
+    return 64.0 * kU * (cost_scale_ + y_.cwiseAbs().sum()) + 1024.0 * kU * kU * rho_max_;
   }
 
   /// Factorises the basis; false if singular or infeasible.
@@ -889,7 +1077,7 @@ class ChebyshevLp {
   /// step, −1 = numerical failure. Bland's rule against cycling when `bland`.
   int pivot(bool bland) {
     std::size_t entering = entries_.size();
-    double best_rc = tol_;
+    double best_rc = tolerance();
     for (std::size_t c = 0; c < entries_.size(); ++c) {
       const double rc = reduced_cost(entries_[c]);
       if (rc > best_rc) {
@@ -922,7 +1110,9 @@ class ChebyshevLp {
   std::vector<std::uint8_t> in_candidates_;  ///< bit 1: outer column, bit 2: inner column
   std::vector<Entry> entries_;
   Point2 c0_;
-  double shift_ = 0.0, rho_min_ = 0.0, tol_ = 0.0;
+  double shift_ = 0.0, rho_min_ = 0.0, rho_max_ = 0.0, cost_scale_ = 0.0;
+  bool precise_ = false;  ///< pricing in double-double (thin zones)
+  bool precise_announced_ = false;
   std::array<std::size_t, 4> basis_{};
   bool have_basis_ = false;
   Eigen::Matrix4d binv_;
@@ -945,10 +1135,18 @@ std::optional<Quad> quad_of_basis(const std::array<Column, 4>& basis) {
 std::optional<Certified> certify(std::span<const Point2> points, const Quad& q) {
   std::optional<Candidate> k = make_candidate(points, q);
   if (!k) return std::nullopt;
-  if (!is_strictly_alternating(points, *k)) return std::nullopt;
+  const bool alternating = is_strictly_alternating(points, *k);
   PassResult pass = containment_pass(points, *k);
   if (!pass.contains) return std::nullopt;
-  return Certified{std::move(*k), std::move(pass)};
+  if (alternating) return Certified{std::move(*k), std::move(pass)};
+  // Exact ties: another 2+2 of the contacts at the same centre may alternate.
+  const std::optional<Quad> tied = alternating_among_ties(points, *k, pass);
+  if (!tied) return std::nullopt;
+  std::optional<Candidate> t = make_candidate(points, *tied);
+  if (!t || !is_strictly_alternating(points, *t)) return std::nullopt;
+  PassResult tied_pass = containment_pass(points, *t);
+  if (!tied_pass.contains) return std::nullopt;
+  return Certified{std::move(*t), std::move(tied_pass)};
 }
 
 /// Exact repair (section 2): the least-width certified quadruple among the near-extremal
@@ -1010,11 +1208,8 @@ std::optional<Certified> exact_exchange(std::span<const Point2> points, Quad q) 
     std::sort(outer.begin(), outer.end(), std::greater<>());
     std::sort(inner.begin(), inner.end());
     auto first_exact = [&](const std::vector<std::pair<double, std::size_t>>& list, bool out) {
-      for (std::size_t j = 0; j < list.size() && j < 64; ++j) {
-        const Rational d2 = internal::squared_distance(
-            internal::to_rational(points[list[j].second]), k->exact().center);
-        if (out ? d2 > k->exact().outer_sq : d2 < k->exact().inner_sq) return list[j].second;
-      }
+      for (std::size_t j = 0; j < list.size() && j < 64; ++j)
+        if (annulus_side(*k, points[list[j].second]) == (out ? 1 : -1)) return list[j].second;
       return points.size();
     };
     const double over = outer.empty() ? 0.0 : outer.front().first - k->rounded.outer_sq;
@@ -1173,6 +1368,10 @@ FastPath run_fast_path(std::span<const Point2> points) {
       c0 = c1;
       continue;
     }
+    // A thin zone just detected: the seeds were ranked by plain squared distances, which
+    // cannot tell its points apart; one precise pricing pass first (cheaper than a
+    // containment pass that would fail).
+    if (lp.first_precise_round() && lp.full_pricing() > 0) continue;
     const std::optional<Quad> quad = quad_of_basis(lp.basis());
     if (quad) {
       std::optional<Certified> cert = certify(points, *quad);
@@ -1183,6 +1382,10 @@ FastPath run_fast_path(std::span<const Point2> points) {
     }
     // Points the candidates missed: add each block's worst and re-solve the same model.
     if (lp.full_pricing() > 0) continue;
+    // Settled on an uncertified optimum with plain costs: near-ties below their ~u·ρ
+    // resolution (a zone wider than the thin threshold whose contacts still differ by less).
+    // Double-double costs and pricing from here on, before the exact repairs.
+    if (lp.escalate_precision()) continue;
     // The model has settled on this candidate set and its optimum is not certified:
     // near-ties (or a degenerate basis). Exact exchange from the LP's quadruple, then exact
     // enumeration of the near-extremal points; if both fail, re-linearise at the model's

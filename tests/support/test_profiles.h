@@ -43,6 +43,22 @@ std::vector<Point2> lobed_noisy_ring(std::size_t n, std::uint64_t seed,
 /// probability 1) — for small-n cross-checks.
 std::vector<Point2> random_points(std::size_t n, std::uint64_t seed, double scale = 1.0);
 
+/// Degenerate but valid inputs (issue 11): every point exactly co-circular, or co-circular to
+/// the last ulp.
+///
+/// A polygon of n vertices (n a multiple of 8) on the circle of `radius` about the origin
+/// whose coordinates have the exact symmetry of the square: the first octant comes from
+/// cos/sin, the rest by exact reflections (swap, sign changes). So the 8 images of a vertex
+/// are exactly co-circular about the origin, though different orbits differ in |p|² by an ulp
+/// or so: exact ties everywhere, and a minimum zone one or two ulps wide.
+std::vector<Point2> symmetric_polygon(std::size_t n, double radius = 85.5);
+
+/// n distinct integer points exactly on the circle x² + y² = r², r = 5·13·17·29·37·41·53·61
+/// (26 244 lattice points: Pythagorean triples), evenly spread in angle, scaled by 2⁻³¹
+/// (exact) and moved by `center` (exact when its coordinates are multiples of 2⁻³¹ below 2²¹,
+/// as the default): all n exactly co-circular, radius ≈ 73.2 mm. n ≤ 26 244.
+std::vector<Point2> lattice_circle(std::size_t n, Point2 center = {600.0, 500.0});
+
 /// Standard normal deviate from a uniform 64-bit stream (Box-Muller on our own uniform:
 /// identical across standard libraries).
 double standard_normal(std::uint64_t& state);

@@ -37,7 +37,9 @@
 #include "internal/extremal_circle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <stdexcept>
@@ -224,8 +226,9 @@ ExactCircle exact_diametral_circle(Point2 a, Point2 b) {
   c.den = 2;
   c.nx = ax + bx;
   c.ny = ay + by;
-  const mpz_class ox = bx - ax, oy = by - ay;
-  c.r2num = ox * ox + oy * oy;
+  c.ox = bx - ax;  // centre − a = (b − a)/2, den = 2
+  c.oy = by - ay;
+  c.r2num = c.ox * c.ox + c.oy * c.oy;
   finish(c);
   return c;
 }
@@ -255,6 +258,8 @@ ExactCircle exact_circumcircle(Point2 a, Point2 b, Point2 cc) {
   c.nx = ax * d + ox;
   c.ny = ay * d + oy;
   c.r2num = ox * ox + oy * oy;
+  c.ox = std::move(ox);
+  c.oy = std::move(oy);
   finish(c);
   return c;
 }
@@ -272,7 +277,117 @@ bool same_center(const ExactCircle& a, const ExactCircle& b) {
          shifted(a.ny * b.den, a.exponent - m) == shifted(b.ny * a.den, b.exponent - m);
 }
 
-CGAL::Bounded_side exact_side(const ExactCircle& circle, Point2 p) {
+const PreciseCircle& ExactCircle::precise() const {
+  if (precise_) return *precise_;
+  PreciseCircle pc;
+  if (support_size >= 2) {
+    // centre = n/den · 2^e; R*²s² = r2num/den² · 2^(2e + 2k), s = 2^k.
+    double ex = 0.0, ey = 0.0, er = 0.0;
+    pc.cx = split_quotient(nx.get_mpz_t(), den.get_mpz_t(), exponent, &ex);
+    pc.cy = split_quotient(ny.get_mpz_t(), den.get_mpz_t(), exponent, &ey);
+    const mpz_class den2 = den * den;
+    pc.r2 = split_quotient(r2num.get_mpz_t(), den2.get_mpz_t(),
+                           2L * exponent + 2L * scale_exponent, &er);
+    pc.center_error = std::max(ex, ey);
+    pc.r2_error = er;
+    pc.scale = scale;
+    pc.usable = filter_usable && std::isfinite(pc.center_error) && std::isfinite(er);
+  }
+  precise_ = pc;
+  return *precise_;
+}
+
+namespace {
+
+/// GMP integers reused across calls (no allocation per test): the exact tie test below
+/// runs once per co-circular point, i.e. for every point of exactly co-circular data.
+struct TieScratch {
+  mpz_t px, py, t;
+  TieScratch() { mpz_inits(px, py, t, nullptr); }
+  ~TieScratch() { mpz_clears(px, py, t, nullptr); }
+  TieScratch(const TieScratch&) = delete;
+  TieScratch& operator=(const TieScratch&) = delete;
+};
+
+/// out = x·2^−e for a multiple x of 2^e (as `scaled`, without temporaries).
+void set_scaled(mpz_ptr out, double x, int e) {
+  if (x == 0.0) {
+    mpz_set_ui(out, 0);
+    return;
+  }
+  int k = 0;
+  const double f = std::frexp(x, &k);
+  mpz_set_d(out, std::ldexp(f, 53));
+  mpz_mul_2exp(out, out, static_cast<mp_bitcnt_t>(k - 53 - e));
+}
+
+/// Lowest set bit of a finite nonzero double: v = odd · 2^result.
+int low_bit_exponent(double v) {
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(v);
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
+  if (biased != 0) mantissa |= std::uint64_t{1} << 52;
+  return (biased != 0 ? biased : 1) - 1075 + std::countr_zero(mantissa);
+}
+
+/// Exact sign of |p − c*|² − R*² in the circle's integers: |P·den − N|² − r2num with
+/// P = p·2^−e (precondition: p's coordinates are multiples of 2^e). When p − support[0]
+/// is below 2^(53+e) (data of one magnitude: always), the offsets D = (p − a)·2^−e are
+/// exact machine integers and |D·den − o|² is formed with one-limb multipliers; otherwise
+/// the absolute form.
+int integer_side(const ExactCircle& circle, Point2 p) {
+  thread_local TieScratch s;
+  const Point2 a = circle.support[0];
+  const int e = circle.exponent;
+  const double dx = p.x - a.x, dy = p.y - a.y;  // exact when the test below passes
+  const double sx = std::ldexp(dx, -e), sy = std::ldexp(dy, -e);
+  if ((p.x == 0.0 || low_bit_exponent(p.x) >= e) && (p.y == 0.0 || low_bit_exponent(p.y) >= e) &&
+      std::fabs(sx) < 0x1.0p53 && std::fabs(sy) < 0x1.0p53) {
+    // p and a lie on the 2^e grid, so p − a is a multiple of 2^e; below 2^(53+e) it is a
+    // double and its computed value exact (a rounded value would be ≥ 2^(53+e)).
+    mpz_mul_si(s.px, circle.den.get_mpz_t(), static_cast<long>(sx));
+    mpz_sub(s.px, s.px, circle.ox.get_mpz_t());
+    mpz_mul_si(s.py, circle.den.get_mpz_t(), static_cast<long>(sy));
+    mpz_sub(s.py, s.py, circle.oy.get_mpz_t());
+    mpz_mul(s.t, s.px, s.px);
+    mpz_addmul(s.t, s.py, s.py);
+    return mpz_cmp(s.t, circle.r2num.get_mpz_t());
+  }
+  set_scaled(s.px, p.x, circle.exponent);
+  set_scaled(s.py, p.y, circle.exponent);
+  mpz_mul(s.px, s.px, circle.den.get_mpz_t());
+  mpz_sub(s.px, s.px, circle.nx.get_mpz_t());
+  mpz_mul(s.py, s.py, circle.den.get_mpz_t());
+  mpz_sub(s.py, s.py, circle.ny.get_mpz_t());
+  mpz_mul(s.t, s.px, s.px);
+  mpz_addmul(s.t, s.py, s.py);
+  return mpz_cmp(s.t, circle.r2num.get_mpz_t());
+}
+
+}  // namespace
+
+CGAL::Bounded_side exact_side(const ExactCircle& circle, Point2 p, double* gap) {
+  // The supports (and their duplicates) lie on the circle by construction: every pass
+  // meets them in its ambiguous band, and they need no arithmetic at all.
+  for (int k = 0; k < circle.support_size; ++k)
+    if (p == circle.support[static_cast<std::size_t>(k)]) {
+      if (gap != nullptr) *gap = 0.0;
+      return CGAL::ON_BOUNDARY;
+    }
+  if (circle.filter_usable && circle.precise().usable) {
+    const PreciseValue v = precise_power_gap(circle.precise(), p);
+    if (gap != nullptr) *gap = v.value;
+    const int s = sign_of(v);
+    if (s < 0) return CGAL::ON_BOUNDED_SIDE;
+    if (s > 0) return CGAL::ON_UNBOUNDED_SIDE;
+  }
+  // Ties: the circle's own integers when p lies on its grid (always for data of one
+  // magnitude), else CGAL's predicates on the supports.
+  if (circle.support_size >= 2 && (p.x == 0.0 || exponent_of(p.x) >= circle.exponent) &&
+      (p.y == 0.0 || exponent_of(p.y) >= circle.exponent)) {
+    const int s = integer_side(circle, p);
+    return s < 0 ? CGAL::ON_BOUNDED_SIDE : (s == 0 ? CGAL::ON_BOUNDARY : CGAL::ON_UNBOUNDED_SIDE);
+  }
   switch (circle.support_size) {
     case 1:
       return p == circle.support[0] ? CGAL::ON_BOUNDARY : CGAL::ON_UNBOUNDED_SIDE;

@@ -12,12 +12,14 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include <gmpxx.h>
 
 #include "internal/exact.h"
+#include "internal/precise_distance.h"
 #include "vcmm/geometry/point.h"
 
 namespace vcmm::geometry::internal {
@@ -66,6 +68,8 @@ struct ExactCircle {
   int support_size = 0;
   std::array<Point2, 3> support{};
   mpz_class nx, ny, den, r2num;
+  /// The centre relative to the first support: (nx, ny) − support[0]·2^−e·den.
+  mpz_class ox, oy;
   int exponent = 0;
   Point2 center_d;             ///< c̃: each coordinate within 1.25 ulp of the exact value
   double radius = 0.0;         ///< within ~1 ulp of the exact radius (R*)
@@ -82,6 +86,14 @@ struct ExactCircle {
   double inside_below = -1.0;
   double outside_above = 0.0;
   bool filter_usable = false;  ///< false when the bounds are meaningless: all tests exact
+
+  /// The second-stage filter (internal/precise_distance.h), built on first use: points in
+  /// the first stage's ~1e-15 band are placed by double-double arithmetic, so only exact
+  /// ties reach the exact predicate (perfect circles put every point in that band).
+  const PreciseCircle& precise() const;
+
+ private:
+  mutable std::optional<PreciseCircle> precise_;
 };
 
 /// One O(n) pass about c over D̃ = fl(X² + Y²), X = fl(px − cx)·scale, Y likewise: the
@@ -136,8 +148,11 @@ ExactCircle exact_diametral_circle(Point2 a, Point2 b);
 ExactCircle exact_circumcircle(Point2 a, Point2 b, Point2 c);
 
 /// Exact side of p with respect to the circle: ON_BOUNDED_SIDE (strictly inside),
-/// ON_BOUNDARY, ON_UNBOUNDED_SIDE — CGAL's filtered exact predicates on the support points.
-CGAL::Bounded_side exact_side(const ExactCircle& circle, Point2 p);
+/// ON_BOUNDARY, ON_UNBOUNDED_SIDE — the double-double filter (circle.precise()), then
+/// CGAL's filtered exact predicates on the support points for the ties. `gap`, when given,
+/// receives the double-double |p − c*|²s² − R*²s² when that stage ran (a ranking key far
+/// finer than the first stage's squared distances), and is left alone otherwise.
+CGAL::Bounded_side exact_side(const ExactCircle& circle, Point2 p, double* gap = nullptr);
 
 /// Exact sign of the dot product (a − o)·(b − o): +1, 0, −1. Used as the angle at o of the
 /// triangle (a, o, b) (acute / right / obtuse) and as the side of o with respect to the

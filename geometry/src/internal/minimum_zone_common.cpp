@@ -11,7 +11,9 @@
 //   D = 2(b × a),  X = |b|² a_y − b_y (d + e)·a,  Y = b_x (d + e)·a − |b|² a_x,
 //   c = o1 + 2^E (X, Y)/D,  R² = 4^E (X² + Y²)/D²,  r² = 4^E ((X − e_x D)² + (Y − e_y D)²)/D²
 // — integer ring operations only (no gcd: several times faster than rationals). Each
-// reported double is the correctly rounded quotient (MPFR), one rounding. Then
+// reported double is the correctly rounded quotient (MPFR), one rounding; centre and radii
+// also get a low part (internal/precise_distance.h) for the containment pass's second-stage
+// filter on thin zones. Then
 //   R − r = (R² − r²) / (R + r),
 // where R² − r² is the exact integer difference rounded once and R, r are the rounded square
 // roots of the rounded R², r² (each within ~1 ulp): the quotient is within a few ulps of
@@ -31,6 +33,7 @@
 
 #include "internal/exact.h"
 #include "internal/minimum_zone_exact.h"
+#include "internal/precise_distance.h"
 
 namespace vcmm::geometry::internal {
 
@@ -123,7 +126,8 @@ double rounded_quotient(mpz_srcptr num, mpz_srcptr den, long exp) {
 
 std::optional<RoundedAnnulus> rounded_annulus(std::span<const Point2> points,
                                               std::array<std::size_t, 2> outer,
-                                              std::array<std::size_t, 2> inner) {
+                                              std::array<std::size_t, 2> inner,
+                                              bool low_parts) {
   const Point2 q[4] = {points[outer[0]], points[outer[1]], points[inner[0]], points[inner[1]]};
   if (q[0] == q[1] || q[2] == q[3]) return std::nullopt;
   int E = std::numeric_limits<int>::max();
@@ -186,9 +190,30 @@ std::optional<RoundedAnnulus> rounded_annulus(std::span<const Point2> points,
   mpz_addmul(Cx.get(), c[0].get(), D.get());
   mpz_set(Cy.get(), Y.get());
   mpz_addmul(Cy.get(), c[1].get(), D.get());
-  out.center = {rounded_quotient(Cx.get(), D.get(), E), rounded_quotient(Cy.get(), D.get(), E)};
-  out.outer_sq = rounded_quotient(NR.get(), D2.get(), 2L * E);
-  out.inner_sq = rounded_quotient(Nr.get(), D2.get(), 2L * E);
+  if (!low_parts) {
+    out.center = {rounded_quotient(Cx.get(), D.get(), E), rounded_quotient(Cy.get(), D.get(), E)};
+    out.outer_sq = rounded_quotient(NR.get(), D2.get(), 2L * E);
+    out.inner_sq = rounded_quotient(Nr.get(), D2.get(), 2L * E);
+    mpz_sub(t1.get(), NR.get(), Nr.get());
+    out.diff_sq = rounded_quotient(t1.get(), D2.get(), 2L * E);
+    return out;
+  }
+  // The same correctly rounded doubles, with the low parts for the second-stage filter.
+  double ex_err = 0.0, ey_err = 0.0, eo_err = 0.0, ei_err = 0.0;
+  const TwoDoubles cx = split_quotient(Cx.get(), D.get(), E, &ex_err);
+  const TwoDoubles cy = split_quotient(Cy.get(), D.get(), E, &ey_err);
+  const TwoDoubles o2 = split_quotient(NR.get(), D2.get(), 2L * E, &eo_err);
+  const TwoDoubles i2 = split_quotient(Nr.get(), D2.get(), 2L * E, &ei_err);
+  out.center = {cx.hi, cy.hi};
+  out.outer_sq = o2.hi;
+  out.inner_sq = i2.hi;
+  out.outer_precise = {cx, cy, std::max(ex_err, ey_err), o2, eo_err, 1.0, true};
+  out.outer_precise.usable = std::isfinite(out.outer_precise.center_error) &&
+                             std::isfinite(eo_err);
+  out.inner_precise = out.outer_precise;
+  out.inner_precise.r2 = i2;
+  out.inner_precise.r2_error = ei_err;
+  out.inner_precise.usable = out.outer_precise.usable && std::isfinite(ei_err);
   mpz_sub(t1.get(), NR.get(), Nr.get());
   out.diff_sq = rounded_quotient(t1.get(), D2.get(), 2L * E);
   return out;

@@ -9,6 +9,7 @@
 #include <span>
 
 #include "internal/exact.h"
+#include "internal/precise_distance.h"
 #include "vcmm/geometry/minimum_zone.h"
 #include "vcmm/geometry/point.h"
 
@@ -41,12 +42,17 @@ struct RoundedAnnulus {
   double inner_sq = 0.0;  ///< nearest double of r*²
   double diff_sq = 0.0;   ///< nearest double of R*² − r*² (exact difference, then rounded)
   bool valid = false;     ///< r* < R* (false: the "inner" pair is not inside the outer circle)
+  /// With low_parts: the outer and inner circle for the second-stage filter (double-double
+  /// centre and radii², internal/precise_distance.h); otherwise not usable.
+  PreciseCircle outer_precise, inner_precise;
 };
 
-/// nullopt when a pair has coincident coordinates or the bisectors are parallel.
+/// nullopt when a pair has coincident coordinates or the bisectors are parallel. The low
+/// parts (two more MPFR divisions per value) only when asked: few candidates need them.
 std::optional<RoundedAnnulus> rounded_annulus(std::span<const Point2> points,
                                               std::array<std::size_t, 2> outer,
-                                              std::array<std::size_t, 2> inner);
+                                              std::array<std::size_t, 2> inner,
+                                              bool low_parts = false);
 
 /// make_minimum_zone_result (internal/minimum_zone_common.h) for an annulus already computed
 /// by rounded_annulus on the same quadruple; `ronq`, when given, is used as RONq (the fast path

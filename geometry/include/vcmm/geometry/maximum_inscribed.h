@@ -18,7 +18,9 @@ struct MaximumInscribedCircle {
   /// 3 contact indices whose closed triangle contains the exact centre. The centre lies on
   /// an edge only when 4 or more points share the circle (e.g. a square); another profile
   /// point on the circle then lies strictly beyond that edge, so the contacts still surround
-  /// the centre (verify() checks this).
+  /// the centre (verify() checks this). With more than 3 points exactly on the circle
+  /// (co-circular data) the fast path reports an acute triple among them, the one nearest
+  /// to 0°, 120°, 240° from the lowest-index contact when that is fatter than its own.
   std::vector<std::size_t> contacts;
   RoundnessParameters ron;  ///< about (center, radius): RONv = 0, RONt = RONp
   Certificate certificate;
@@ -26,8 +28,11 @@ struct MaximumInscribedCircle {
 
 /// Largest circle with no profile point inside it and its centre inside the profile's
 /// convex hull. The optimum is a nearest-point Voronoi vertex with its three contacts
-/// around it. Fast path from an algebraic (Kåsa) centre estimate on the inner candidates, confirmed on all
-/// points; Delaunay-based exhaustive method as fallback.
+/// around it. Fast path: a linearised program on inner candidates from an algebraic (Kåsa)
+/// centre estimate, confirmed on all points, proven global by a region argument (with a
+/// Delaunay triangulation of the few points near the centre where that argument needs it);
+/// Delaunay-based exhaustive method as fallback. Where several centres share the largest
+/// radius exactly, any one of them is returned (each is certified).
 /// Preconditions: ≥ 3 finite points, not collinear (InvalidInput). Throws UndefinedResult
 /// when the largest empty circle in the hull is not surrounded by its contacts (partial
 /// arcs, too sparse a profile): the MI circle is then not defined by ISO 12181.

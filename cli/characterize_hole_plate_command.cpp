@@ -187,8 +187,10 @@ int run_hole_plate(const HolePlateOptions& o) {
     for (const std::string& p : o.placements) source += " " + p;
     nlohmann::ordered_json out = nlohmann::ordered_json::object();
     out["kinematics"] = nlohmann::ordered_json::parse(ch::kinematics_json_section(r, source));
-    write_file_atomically(o.output, out.dump(2) + "\n");
-    if (!o.report.empty()) write_file_atomically(o.report, ch::hole_plate_report_json(r) + "\n");
+    OutputTransaction outputs;  // the model section and the report together or not at all
+    outputs.stage(o.output, out.dump(2) + "\n");
+    if (!o.report.empty()) outputs.stage(o.report, ch::hole_plate_report_json(r) + "\n");
+    outputs.commit();
     std::cout << kName << ": wrote " << o.output << (o.report.empty() ? "" : " and " + o.report)
               << "\n";
     return kOk;

@@ -78,6 +78,8 @@ int run_uncertainty(const UncertaintyOptions& o) {
     return kUsage;
   }
   try {
+    if (!o.output.empty()) check_output_path(o.output);  // before minutes of Monte Carlo
+    if (!o.samples.empty()) check_output_path(o.samples);
     const em::DigitalModel model = em::read_digital_model_file(o.model);
     const em::Measurement measured = em::read_measurement_csv_file(o.points);
     InterruptGuard interrupt;
@@ -93,13 +95,13 @@ int run_uncertainty(const UncertaintyOptions& o) {
     const std::string report = o.json ? va::ring_uncertainty_json(result, options)
                                       : va::ring_uncertainty_text(result, options);
     // An interrupted run reports what it did, but never writes files that look finished.
-    if (!o.output.empty() && !cancelled) {
-      write_file_atomically(o.output, report);
-    } else {
-      std::cout << report;
-    }
+    // The report and the samples appear together or not at all.
+    OutputTransaction outputs;
+    if (!o.output.empty() && !cancelled) outputs.stage(o.output, report);
     if (!o.samples.empty() && !cancelled)
-      write_file_atomically(o.samples, va::ring_samples_csv(result.monte_carlo));
+      outputs.stage(o.samples, va::ring_samples_csv(result.monte_carlo));
+    outputs.commit();
+    if (o.output.empty() || cancelled) std::cout << report;
     if (cancelled) {
       std::cerr << "vcmm uncertainty: interrupted: the statistics above cover only the "
                 << result.monte_carlo.trials << " trials done; no output file written\n";

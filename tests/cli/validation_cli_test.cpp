@@ -96,6 +96,26 @@ TEST(CliUncertainty, BadOptionsAndInputs) {
   EXPECT_NE(s.err.find("cut-off"), std::string::npos) << s.err;
 }
 
+TEST(CliUncertainty, OutputsAppearTogetherOrNotAtAll) {
+  // The report's directory exists, the samples' does not: exit 3 naming the path and the
+  // reason, before any trial is run, and no report either.
+  const fs::path report = scratch_dir() / "together_report.txt";
+  fs::remove(report);
+  const fs::path samples = scratch_dir() / "no_such_dir" / "s.csv";
+  const CliRun r = run(uncertainty_args("--trials 100 -o '" + report.string() + "' --samples '" +
+                                        samples.string() + "'"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(samples.string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(report));
+  // The same file for both outputs is refused, and nothing is written.
+  const CliRun same = run(uncertainty_args("--trials 100 -o '" + report.string() +
+                                           "' --samples '" + report.string() + "'"));
+  EXPECT_EQ(same.exit_code, 3) << same.err;
+  EXPECT_NE(same.err.find("two outputs"), std::string::npos) << same.err;
+  EXPECT_FALSE(fs::exists(report));
+}
+
 TEST(CliDemo, SmallDemoRunsAndResumes) {
   const fs::path out = scratch_dir() / "demo";
   fs::remove_all(out);

@@ -629,17 +629,19 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     score(m.diameter, ev.k);
     score(m.roundness, ev.k);
 
-    // Files: samples and residuals first, the outcome (the completion marker) last.
-    errormodel::write_file_atomically((out_dir / "samples" / (entry.id + ".csv")).string(),
-                                      ring_samples_csv(a.monte_carlo));
-    errormodel::write_file_atomically(
-        (out_dir / "residuals" / (entry.id + ".csv")).string(),
-        residuals_csv(evaluate_ring_profile(ring_profile(a.best_estimate), evaluation)));
+    // Files of one measurement: one transaction, the outcome (the completion marker that
+    // resume looks for) renamed into place last.
+    errormodel::OutputTransaction files;
+    files.stage((out_dir / "samples" / (entry.id + ".csv")).string(),
+                ring_samples_csv(a.monte_carlo));
+    files.stage((out_dir / "residuals" / (entry.id + ".csv")).string(),
+                residuals_csv(evaluate_ring_profile(ring_profile(a.best_estimate), evaluation)));
     m.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
     // Round-trip through the file's text so computed and resumed outcomes are identical.
     const std::string text = outcome_to_json(m).dump(1) + "\n";
-    errormodel::write_file_atomically(result_file.string(), text);
+    files.stage(result_file.string(), text);
+    files.commit();
     MeasurementOutcome stored = outcome_from_json(json::parse(text));
     outcome.measurements.push_back(std::move(stored));
     ++outcome.computed;
@@ -657,23 +659,24 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     j.erase("wall_seconds");  // the tables are the same whether computed or resumed
     results.push_back(std::move(j));
   }
-  errormodel::write_file_atomically((out_dir / "results.csv").string(),
+  errormodel::OutputTransaction tables;  // the campaign's tables appear together
+  tables.stage((out_dir / "results.csv").string(),
                                     results_csv(outcome.measurements));
-  errormodel::write_file_atomically(
+  tables.stage(
       (out_dir / "results.json").string(),
       json({{"schema", "vcmm.campaign_results"}, {"schema_version", 1}, {"measurements", results}})
               .dump(1) +
           "\n");
-  errormodel::write_file_atomically((out_dir / "summary.csv").string(),
+  tables.stage((out_dir / "summary.csv").string(),
                                     summary_csv(outcome.summary));
-  errormodel::write_file_atomically(
+  tables.stage(
       (out_dir / "summary.json").string(),
       json({{"schema", "vcmm.campaign_summary"}, {"schema_version", 1},
             {"summary", summary_json(outcome.summary)}})
               .dump(1) +
           "\n");
   if (!outcome.treatments.empty())
-    errormodel::write_file_atomically((out_dir / "treatments.csv").string(),
+    tables.stage((out_dir / "treatments.csv").string(),
                                       treatments_csv(outcome.treatments));
   json info = {{"campaign", campaign.source},
                {"description", campaign.description},
@@ -693,7 +696,8 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                {"kinematic_errors", ev.kinematics_corrected ? "corrected" : "uncertainty_only"},
                {"wall_seconds_this_run", outcome.wall_seconds}};
   for (const auto& [k, v] : options.provenance) info[k] = v;
-  errormodel::write_file_atomically((out_dir / "run_info.json").string(), info.dump(1) + "\n");
+  tables.stage((out_dir / "run_info.json").string(), info.dump(1) + "\n");
+  tables.commit();
   return outcome;
 }
 

@@ -203,9 +203,9 @@ std::map<std::string, RingMeasurands> write_demo_campaign(const DemoWorld& world
   std::error_code ec;
   fs::create_directories(dir / "measurements", ec);
   if (!ec) fs::create_directories(dir / "reference", ec);
-  if (ec) throw std::runtime_error("write_demo_campaign: cannot create '" + dir.string() +
-                                   "': " + ec.message());
-  em::write_file_atomically((dir / "model.json").string(), model_json_text);
+  if (ec) throw em::OutputError(dir.string() + ": cannot create the demo directory: " + ec.message());
+  em::OutputTransaction files;  // the demo's inputs appear together or not at all
+  files.stage((dir / "model.json").string(), model_json_text);
 
   // Roundness-meter profiles, one per height (equiangular from 0°).
   for (std::size_t h = 0; h < kHeights.size(); ++h) {
@@ -221,8 +221,7 @@ std::map<std::string, RingMeasurands> write_demo_campaign(const DemoWorld& world
       text += shortest(360.0 * static_cast<double>(i) / static_cast<double>(dev.size())) + "," +
               shortest(dev[i] * 1000.0) + "\n";
     }
-    em::write_file_atomically((dir / "reference" / (std::string(kHeights[h]) + ".csv")).string(),
-                              text);
+    files.stage((dir / "reference" / (std::string(kHeights[h]) + ".csv")).string(), text);
   }
 
   Campaign c;
@@ -242,10 +241,10 @@ std::map<std::string, RingMeasurands> write_demo_campaign(const DemoWorld& world
   bool first = true;
   for (const DemoMeasurement& d : world.measurements) {
     const std::string rel = "measurements/" + d.id + ".csv";
-    em::write_measurement_csv_file(
-        (dir / rel).string(), d.measured,
-        std::vector<std::string>{"vcmm demo measurement " + d.id + " (synthetic ground truth, seed " +
-                                 std::to_string(world.options.seed) + ")"});
+    const std::vector<std::string> comments{"vcmm demo measurement " + d.id +
+                                            " (synthetic ground truth, seed " +
+                                            std::to_string(world.options.seed) + ")"};
+    files.stage((dir / rel).string(), em::measurement_csv(d.measured, comments));
     CampaignMeasurement e;
     e.id = d.id;
     e.points = rel;
@@ -275,8 +274,9 @@ std::map<std::string, RingMeasurands> write_demo_campaign(const DemoWorld& world
     first = false;
   }
   truth_json += "\n ]\n}\n";
-  em::write_file_atomically((dir / "truth.json").string(), truth_json);
-  em::write_file_atomically((dir / "campaign.json").string(), campaign_json(c));
+  files.stage((dir / "truth.json").string(), truth_json);
+  files.stage((dir / "campaign.json").string(), campaign_json(c));
+  files.commit();
   return truth;
 }
 

@@ -3,13 +3,17 @@
 
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "commands.h"
+#include "vcmm/validation/provenance.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"vcmm: exact ISO 12181-2 roundness evaluation and a validated virtual CMM"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "vcmm 0.1.0");
+  app.set_version_flag("--version", "vcmm " + std::string(vcmm::validation::vcmm_version()) +
+                                        " (" + std::string(vcmm::validation::vcmm_revision()) +
+                                        ")\nlicence: GPL-3.0-or-later (LICENSE)");
   int exit_code = vcmm::cli::kOk;
   vcmm::cli::add_roundness_command(app, &exit_code);
   vcmm::cli::add_check_command(app, &exit_code);

@@ -18,6 +18,7 @@
 #include "run_control.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/measurement.h"
+#include "vcmm/validation/provenance.h"
 #include "vcmm/validation/ring_experiment.h"
 #include "vcmm/validation/ring_uncertainty_report.h"
 
@@ -82,6 +83,10 @@ int run_uncertainty(const UncertaintyOptions& o) {
     if (!o.samples.empty()) check_output_path(o.samples);
     const em::DigitalModel model = em::read_digital_model_file(o.model);
     const em::Measurement measured = em::read_measurement_csv_file(o.points);
+    options.provenance = {{"model_file", o.model},
+                          {"model_sha256", va::file_sha256(o.model)},
+                          {"points_file", o.points},
+                          {"points_sha256", va::file_sha256(o.points)}};
     InterruptGuard interrupt;
     ProgressBar bar("vcmm uncertainty", progress_mode);
     options.monte_carlo.cancel = interrupt.flag();

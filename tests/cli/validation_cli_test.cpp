@@ -10,6 +10,7 @@
 #include <string>
 
 #include "support/cli_run.h"
+#include "vcmm/validation/provenance.h"
 
 namespace {
 
@@ -60,6 +61,13 @@ TEST(CliUncertainty, JsonReportHasEveryQuantityWithUnits) {
   EXPECT_EQ(j["measurands"]["diameter"]["unit"], "mm");
   EXPECT_EQ(j["measurands"]["roundness"]["unit"], "um");
   EXPECT_NEAR(j["measurands"]["diameter"]["estimate"].get<double>(), 171.0, 0.01);
+  // Provenance: the code and the exact inputs that made the result.
+  const auto& p = j["provenance"];
+  EXPECT_EQ(p["vcmm_version"], std::string(vcmm::validation::vcmm_version()));
+  EXPECT_FALSE(p["git_revision"].get<std::string>().empty());
+  EXPECT_EQ(p["model_file"], kModel);
+  EXPECT_EQ(p["model_sha256"], vcmm::validation::sha256_hex(slurp(kModel)));
+  EXPECT_EQ(p["points_sha256"], vcmm::validation::sha256_hex(slurp(measurement())));
 }
 
 TEST(CliUncertainty, SameSeedSameNumbersForOneAndTwoThreads) {

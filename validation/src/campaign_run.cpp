@@ -18,6 +18,7 @@
 #include "vcmm/errormodel/atomic_file.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/validation/comparison.h"
+#include "vcmm/validation/provenance.h"
 #include "vcmm/validation/ring_uncertainty_report.h"
 
 namespace vcmm::validation {
@@ -695,6 +696,10 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                {"bias_treatment", std::string(to_string(ev.bias_treatment))},
                {"kinematic_errors", ev.kinematics_corrected ? "corrected" : "uncertainty_only"},
                {"wall_seconds_this_run", outcome.wall_seconds}};
+  info["vcmm_version"] = std::string(vcmm_version());
+  info["git_revision"] = std::string(vcmm_revision());
+  if (!campaign.model_path.empty())  // empty for campaigns built in code, not read from a file
+    info["model_sha256"] = file_sha256(campaign.model_path.string());
   for (const auto& [k, v] : options.provenance) info[k] = v;
   tables.stage((out_dir / "run_info.json").string(), info.dump(1) + "\n");
   tables.commit();

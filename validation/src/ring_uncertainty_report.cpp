@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "internal/number_text.h"
+#include "vcmm/validation/provenance.h"
 
 namespace vcmm::validation {
 namespace {
@@ -72,6 +73,10 @@ std::string ring_uncertainty_json(const RingUncertaintyResult& result,
   nlohmann::json j;
   j["schema"] = "vcmm.uncertainty_result";
   j["schema_version"] = 1;
+  nlohmann::json prov = {{"vcmm_version", std::string(vcmm_version())},
+                         {"git_revision", std::string(vcmm_revision())}};
+  for (const auto& [k, v] : options.provenance) prov[k] = v;
+  j["provenance"] = std::move(prov);
   const auto& mc = result.monte_carlo;
   j["evaluation"] = {
       {"reference_circle", std::string(to_string(options.evaluation.reference))},
@@ -129,6 +134,10 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
   } else {
     os << "unfiltered\n";
   }
+  os << "vcmm " << vcmm_version() << " (" << vcmm_revision() << ")";
+  if (const auto m = options.provenance.find("model_sha256"); m != options.provenance.end())
+    os << ", model sha256 " << m->second.substr(0, 16) << "…";
+  os << "\n";
   if (mc.summaries.empty()) {
     os << "too few trials completed for statistics\n";
     return os.str();

@@ -18,9 +18,11 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -80,6 +82,9 @@ struct RingUncertaintyOptions {
   std::optional<uncertainty::AdaptiveOptions> adaptive; ///< set: JCGM 101 7.9 instead of fixed M
   RoundnessBiasTreatment roundness_bias = RoundnessBiasTreatment::shrinkage;
   ShrinkageOptions shrinkage;  ///< the shrinkage treatment's tunables
+  /// Written into the report's "provenance" object beside the vcmm version and revision
+  /// (e.g. model_file, model_sha256, points_file, points_sha256: provenance.h).
+  std::map<std::string, std::string> provenance;
 };
 
 /// The shrinkage treatment's run (form_bias.h): what it estimated and its Monte Carlo.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 
@@ -37,6 +38,28 @@ CLI::Validator unsigned_64() {
         return {};
       },
       "UINT64");
+}
+
+Eigen::Vector3d parse_triple(const std::string& text, const char* option) {
+  Eigen::Vector3d v;
+  std::size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t comma = text.find(',', start);
+    if ((k < 2) != (comma != std::string::npos))
+      throw std::invalid_argument(std::string(option) + " needs three comma-separated numbers " +
+                                  "X,Y,Z (mm); got '" + text + "'");
+    std::string field = text.substr(start, k < 2 ? comma - start : std::string::npos);
+    while (!field.empty() && field.front() == ' ') field.erase(0, 1);
+    while (!field.empty() && field.back() == ' ') field.pop_back();
+    if (!field.empty() && field.front() == '+') field.erase(0, 1);
+    const auto r = std::from_chars(field.data(), field.data() + field.size(), v[k]);
+    if (field.empty() || r.ec != std::errc() || r.ptr != field.data() + field.size() ||
+        !std::isfinite(v[k]))
+      throw std::invalid_argument(std::string(option) + ": component " + std::to_string(k + 1) +
+                                  " is not a finite number ('" + field + "')");
+    start = comma + 1;
+  }
+  return v;
 }
 
 std::optional<double> parse_filter_upr(const std::string& text) {

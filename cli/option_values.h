@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <Eigen/Core>
 
 #include <optional>
 #include <string>
@@ -16,6 +17,9 @@ CLI::Validator finite_number();
 /// Option check: an unsigned 64-bit integer written in decimal digits (0 … 18446744073709551615).
 /// CLI11 alone wraps "-1" and saturates 2⁶⁴ to 2⁶⁴ − 1; seeds must be what they say.
 CLI::Validator unsigned_64();
+
+/// "X,Y,Z" → three finite doubles (mm); throws std::invalid_argument naming the option.
+Eigen::Vector3d parse_triple(const std::string& text, const char* option);
 
 /// `--filter-upr` values: a finite number of UPR > 0, or "none" (any case) for unfiltered.
 /// Throws std::invalid_argument with the option and the value otherwise.

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "atomic_file.h"
@@ -18,6 +19,7 @@
 #include "run_control.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/measurement.h"
+#include "vcmm/validation/measurement_input.h"
 #include "vcmm/validation/provenance.h"
 #include "vcmm/validation/ring_experiment.h"
 #include "vcmm/validation/ring_uncertainty_report.h"
@@ -46,12 +48,35 @@ struct UncertaintyOptions {
   std::string bias_treatment = "shrinkage";
   std::uint64_t pilot_trials = va::ShrinkageOptions{}.pilot_trials;
   std::uint64_t surrogate_trials = va::ShrinkageOptions{}.surrogate_trials;
+  // Metadata of a plain point file or a roundness-meter profile (measurement_input.h).
+  std::string mode, location, stylus_offset, frame = "machine", surface = "inner";
+  std::optional<double> temperature_c, orientation_deg, radius_mm;
+  double height_mm = 0.0;
 };
+
+/// The metadata options as the library's MeasurementSetup; std::invalid_argument (exit 2)
+/// for a malformed value.
+va::MeasurementSetup measurement_setup(const UncertaintyOptions& o) {
+  va::MeasurementSetup s;
+  if (!o.mode.empty()) s.mode = em::probing_mode_from_string(o.mode);
+  if (!o.mode.empty() && !s.mode)
+    throw std::invalid_argument("--mode must be scanning or touch; got '" + o.mode + "'");
+  s.temperature_c = o.temperature_c;
+  s.orientation_deg = o.orientation_deg;
+  s.radius_mm = o.radius_mm;
+  s.height_mm = o.height_mm;
+  if (!o.location.empty()) s.location_mm = parse_triple(o.location, "--location");
+  if (!o.stylus_offset.empty()) s.stylus_offset_mm = parse_triple(o.stylus_offset, "--stylus-offset");
+  s.frame = o.frame == "workpiece" ? va::PointFrame::workpiece : va::PointFrame::machine;
+  s.side = o.surface == "outer" ? va::SurfaceSide::outer : va::SurfaceSide::inner;
+  return s;
+}
 
 constexpr std::uint64_t kDefaultTrials = 100'000;
 
 int run_uncertainty(const UncertaintyOptions& o) {
   va::RingUncertaintyOptions options;
+  va::MeasurementSetup setup;
   ProgressMode progress_mode;
   try {
     // IsMember-checked: MZ, MI, LS, MC in any case.
@@ -74,6 +99,7 @@ int run_uncertainty(const UncertaintyOptions& o) {
     options.roundness_bias = *va::roundness_bias_treatment_from_string(o.bias_treatment);
     options.shrinkage.pilot_trials = o.pilot_trials;
     options.shrinkage.surrogate_trials = o.surrogate_trials;
+    setup = measurement_setup(o);
   } catch (const std::invalid_argument& ex) {
     std::cerr << "vcmm uncertainty: error: " << ex.what() << "\n";
     return kUsage;
@@ -82,7 +108,7 @@ int run_uncertainty(const UncertaintyOptions& o) {
     if (!o.output.empty()) check_output_path(o.output);  // before minutes of Monte Carlo
     if (!o.samples.empty()) check_output_path(o.samples);
     const em::DigitalModel model = em::read_digital_model_file(o.model);
-    const em::Measurement measured = em::read_measurement_csv_file(o.points);
+    const em::Measurement measured = va::read_measurement_file(o.points, setup);
     options.provenance = {{"model_file", o.model},
                           {"model_sha256", va::file_sha256(o.model)},
                           {"points_file", o.points},
@@ -128,8 +154,41 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
       "measurement, with bias and bias-corrected estimates");
   cmd->add_option("--model", opts->model, "digital-model JSON (docs/errormodel.md)")->required();
   cmd->add_option("--points", opts->points,
-                  "the measurement CSV (points, normals, placement; docs/errormodel.md)")
+                  "the measurement: vcmm's measurement CSV (docs/errormodel.md), or plain points "
+                  "x,y[,z] or a roundness-meter profile angle_deg,deviation_um with the "
+                  "metadata options below (docs/formats.md)")
       ->required();
+  const char* meta = "Metadata of plain points and profiles";
+  cmd->add_option("--mode", opts->mode, "probing mode: scanning or touch")->group(meta);
+  cmd->add_option("--temperature", opts->temperature_c, "workpiece temperature reading (°C)")
+      ->check(finite_number())
+      ->group(meta);
+  cmd->add_option("--location", opts->location,
+                  "ring centre in machine coordinates X,Y,Z (mm); default for machine-frame "
+                  "points with z: their LS centre and mean z")
+      ->group(meta);
+  cmd->add_option("--orientation", opts->orientation_deg,
+                  "rotation of the ring about machine Z (degrees, default 0)")
+      ->check(finite_number())
+      ->group(meta);
+  cmd->add_option("--stylus-offset", opts->stylus_offset,
+                  "tip centre relative to the ram reference point X,Y,Z (mm)")
+      ->group(meta);
+  cmd->add_option("--frame", opts->frame,
+                  "frame of plain points: machine (a CMM export, default) or workpiece")
+      ->check(CLI::IsMember({"machine", "workpiece"}))
+      ->group(meta);
+  cmd->add_option("--surface", opts->surface,
+                  "probed side: inner (a bore, the ring gauge; default) or outer")
+      ->check(CLI::IsMember({"inner", "outer"}))
+      ->group(meta);
+  cmd->add_option("--radius", opts->radius_mm,
+                  "profiles: nominal radius the deviations are about (mm)")
+      ->check(finite_number())
+      ->group(meta);
+  cmd->add_option("--height", opts->height_mm, "profiles: workpiece height of the profile (mm)")
+      ->check(finite_number())
+      ->group(meta);
   auto* trials = cmd->add_option("--trials", opts->trials,
                                  "number of Monte Carlo trials M (default 100000)")
                      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100'000'000}));

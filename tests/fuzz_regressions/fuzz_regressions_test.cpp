@@ -10,10 +10,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "input_checks.h"
+#include "vcmm/characterization/hole_plate.h"
+#include "vcmm/geometry/point.h"
 
 namespace {
 
@@ -114,6 +118,40 @@ TEST(FuzzRegressions, ChecksRefuseBadInput) {
     SCOPED_TRACE(t.name);
     EXPECT_EQ(t.check(""), Outcome::rejected);
     EXPECT_EQ(t.check("nan,nan\n"), Outcome::rejected);
+  }
+}
+
+
+// ---- the bugs the fuzz targets found, each pinned by its exact outcome ---------------------
+
+// hole_plate_csv (docs/fuzzing.md, bug 1): the writer printed u as shortest(u_mm · 1e3), which
+// for 13 µm is "13.000000000000002", and reading that back gave another u_mm. Now every
+// uncertainty the reader produced is written so that it reads back exactly, as the shortest
+// such text.
+TEST(FuzzRegressions, HolePlateUncertaintyRoundTripsThroughTheWriter) {
+  const fs::path file = kSource / "tests/data/fuzz_regressions/hole_plate_csv/u-um-13-round-trip.csv";
+  std::istringstream in(file_bytes(file));
+  const auto plate = vcmm::characterization::read_hole_plate_csv(in, "regression");
+  ASSERT_EQ(plate.calibration_u_mm.size(), 3u);
+  EXPECT_EQ(plate.calibration_u_mm[0], 13 * 1e-3);
+  const std::string text = vcmm::characterization::hole_plate_csv(plate);
+  EXPECT_NE(text.find("\nR,3,2,0,13\n"), std::string::npos) << text;
+  std::istringstream again(text);
+  EXPECT_EQ(vcmm::characterization::read_hole_plate_csv(again, "again").calibration_u_mm,
+            plate.calibration_u_mm);
+  // Every µm value with 1 to 17 significant digits, as files carry them (fixed seed).
+  std::mt19937_64 rng(12);
+  for (int i = 0; i < 20000; ++i) {
+    const double u_um = std::uniform_real_distribution<double>(0.0, 50.0)(rng);
+    std::ostringstream os;
+    os.precision(1 + i % 17);
+    os << u_um;
+    std::istringstream one("id,x_mm,y_mm,z_mm,u_um\na,0,0,0," + os.str() + "\nb,1,0,0,0\nc,0,1,0,0\n");
+    const auto p = vcmm::characterization::read_hole_plate_csv(one, "generated");
+    std::istringstream back(vcmm::characterization::hole_plate_csv(p));
+    ASSERT_EQ(vcmm::characterization::read_hole_plate_csv(back, "back").calibration_u_mm[0],
+              p.calibration_u_mm[0])
+        << "u_um " << os.str();
   }
 }
 

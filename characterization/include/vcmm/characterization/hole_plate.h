@@ -248,7 +248,8 @@ std::string hole_plate_report_json(const KinematicCharacterization& result);
 /// number, negative u, fewer than 3 features.
 HolePlate read_hole_plate_csv(std::istream& in, const std::string& source_name);
 HolePlate read_hole_plate_csv_file(const std::string& path);
-/// Writes the plate CSV (shortest round-trip doubles); `comments` become `# ` lines.
+/// Writes the plate CSV (shortest round-trip doubles; u as the shortest µm text that the reader
+/// turns back into the same calibration_u_mm); `comments` become `# ` lines.
 std::string hole_plate_csv(const HolePlate& plate, std::span<const std::string> comments = {});
 
 /// Placement CSV: metadata `# stylus_offset_mm: x, y, z` (required), `# setup: NAME` and

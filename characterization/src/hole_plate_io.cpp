@@ -397,11 +397,18 @@ HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::st
           pl.stylus_offset_mm[k] = parse_number(f[static_cast<std::size_t>(k)], source, line,
                                                 "stylus_offset_mm component " + std::to_string(k + 1));
         stylus = true;
-      } else if (key == "setup") {
-        pl.setup = std::string(value);
-      } else {
-        if (value.empty()) fail(source, line, "metadata 'name' is empty");
-        pl.name = std::string(value);
+      } else {  // setup or name
+        // A carriage return inside the value (a stray CR, not a CRLF ending, which is trimmed)
+        // would give a name no placement file can hold — the writer refuses it: refused here
+        // (found by the fuzz target hole_plate_placement_csv, docs/fuzzing.md).
+        if (value.find('\r') != std::string_view::npos)
+          fail(source, line, "metadata '" + key + "' contains a carriage return");
+        if (key == "setup") {
+          pl.setup = std::string(value);
+        } else {
+          if (value.empty()) fail(source, line, "metadata 'name' is empty");
+          pl.name = std::string(value);
+        }
       }
       continue;
     }

@@ -155,4 +155,26 @@ TEST(FuzzRegressions, HolePlateUncertaintyRoundTripsThroughTheWriter) {
   }
 }
 
+// hole_plate_placement_csv (docs/fuzzing.md, bug 2): `# name:` with a carriage return inside
+// ("\x02\rh") was read into the name, which the writer then refused (a name must not contain a
+// line break). The reader now refuses it, naming the line; a CRLF ending is still trimmed.
+TEST(FuzzRegressions, HolePlatePlacementRefusesACarriageReturnInsideNameOrSetup) {
+  const fs::path file =
+      kSource / "tests/data/fuzz_regressions/hole_plate_placement_csv/carriage-return-in-name.csv";
+  std::istringstream in(file_bytes(file));
+  try {
+    vcmm::characterization::read_hole_plate_placement_csv(in, "p.csv");
+    FAIL() << "a name with a carriage return was accepted";
+  } catch (const vcmm::geometry::InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "p.csv:1: metadata 'name' contains a carriage return");
+  }
+  std::istringstream setup("# stylus_offset_mm: 0,0,0\r\n# setup: a\rb\r\nid,x_mm,y_mm,z_mm\r\nA,1,2,3\r\n");
+  EXPECT_THROW(vcmm::characterization::read_hole_plate_placement_csv(setup, "p.csv"),
+               vcmm::geometry::InvalidInput);
+  std::istringstream crlf("# name: n1\r\n# setup: s1\r\n# stylus_offset_mm: 0,0,0\r\nid,x_mm,y_mm,z_mm\r\nA,1,2,3\r\n");
+  const auto pl = vcmm::characterization::read_hole_plate_placement_csv(crlf, "p.csv");
+  EXPECT_EQ(pl.name, "n1");
+  EXPECT_EQ(pl.setup, "s1");
+}
+
 }  // namespace

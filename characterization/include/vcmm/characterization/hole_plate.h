@@ -255,8 +255,9 @@ std::string hole_plate_csv(const HolePlate& plate, std::span<const std::string> 
 /// Placement CSV: metadata `# stylus_offset_mm: x, y, z` (required), `# setup: NAME` and
 /// `# name: NAME` (optional; default name = source_name), optional `# format:
 /// vcmm.hole_plate_placement 1`; header `id,x_mm,y_mm,z_mm`; one measured centre a line.
-/// Throws InvalidInput "source:line: ..." (missing/duplicate metadata, bad header, field count,
-/// unparsable or non-finite number, empty or repeated id, no data).
+/// Throws InvalidInput "source:line: ..." (missing/duplicate metadata, a name or setup with a
+/// carriage return inside, bad header, field count, unparsable or non-finite number, empty or
+/// repeated id, no data).
 HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::string& source_name);
 HolePlatePlacement read_hole_plate_placement_csv_file(const std::string& path);
 std::string hole_plate_placement_csv(const HolePlatePlacement& placement,

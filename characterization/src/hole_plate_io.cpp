@@ -10,6 +10,7 @@
 #include <cmath>
 #include <fstream>
 #include <istream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -36,6 +37,29 @@ std::string shortest(double v) {
   std::array<char, 32> buf{};
   const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
   return std::string(buf.data(), r.ptr);
+}
+
+/// The µm text of a length stored in mm, such that the plate reader (µm · 1e-3) gives `mm`
+/// back exactly. shortest(mm · 1e3) alone does not: the two products round twice, so e.g.
+/// 13 µm → 0.013 mm → "13.000000000000002" µm → a different mm value (found by the fuzz target
+/// hole_plate_csv, docs/fuzzing.md). The µm value the mm came from lies within a few ulps of
+/// mm · 1e3 (three roundings of relative size ≤ 2⁻⁵³ each), so the neighbours up to 8 ulps away
+/// are tried and the shortest text that reads back is kept; a value no µm text reproduces
+/// (one built in code) falls back to the nearest, shortest(mm · 1e3).
+std::string um_text_reading_back_to(double mm) {
+  const double guess = mm * 1e3;
+  std::string best;
+  for (int side : {+1, -1}) {
+    double um = guess;
+    for (int step = 0; step <= 8 && std::isfinite(um); ++step) {
+      if (um * 1e-3 == mm) {
+        std::string text = shortest(um);
+        if (best.empty() || text.size() < best.size()) best = std::move(text);
+      }
+      um = std::nextafter(um, side * std::numeric_limits<double>::infinity());
+    }
+  }
+  return best.empty() ? shortest(guess) : best;
 }
 
 std::string_view trim(std::string_view s) {
@@ -334,7 +358,7 @@ std::string hole_plate_csv(const HolePlate& plate, std::span<const std::string> 
     if (!c.allFinite() || !std::isfinite(plate.calibration_u_mm[i]))
       throw InvalidInput("hole_plate_csv: feature '" + plate.ids[i] + "' is not finite");
     s += plate.ids[i] + "," + shortest(c.x()) + "," + shortest(c.y()) + "," + shortest(c.z()) +
-         "," + shortest(plate.calibration_u_mm[i] * 1e3) + "\n";
+         "," + um_text_reading_back_to(plate.calibration_u_mm[i]) + "\n";
   }
   return s;
 }
@@ -373,11 +397,18 @@ HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::st
           pl.stylus_offset_mm[k] = parse_number(f[static_cast<std::size_t>(k)], source, line,
                                                 "stylus_offset_mm component " + std::to_string(k + 1));
         stylus = true;
-      } else if (key == "setup") {
-        pl.setup = std::string(value);
-      } else {
-        if (value.empty()) fail(source, line, "metadata 'name' is empty");
-        pl.name = std::string(value);
+      } else {  // setup or name
+        // A carriage return inside the value (a stray CR, not a CRLF ending, which is trimmed)
+        // would give a name no placement file can hold — the writer refuses it: refused here
+        // (found by the fuzz target hole_plate_placement_csv, docs/fuzzing.md).
+        if (value.find('\r') != std::string_view::npos)
+          fail(source, line, "metadata '" + key + "' contains a carriage return");
+        if (key == "setup") {
+          pl.setup = std::string(value);
+        } else {
+          if (value.empty()) fail(source, line, "metadata 'name' is empty");
+          pl.name = std::string(value);
+        }
       }
       continue;
     }

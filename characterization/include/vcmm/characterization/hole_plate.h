@@ -248,14 +248,16 @@ std::string hole_plate_report_json(const KinematicCharacterization& result);
 /// number, negative u, fewer than 3 features.
 HolePlate read_hole_plate_csv(std::istream& in, const std::string& source_name);
 HolePlate read_hole_plate_csv_file(const std::string& path);
-/// Writes the plate CSV (shortest round-trip doubles); `comments` become `# ` lines.
+/// Writes the plate CSV (shortest round-trip doubles; u as the shortest µm text that the reader
+/// turns back into the same calibration_u_mm); `comments` become `# ` lines.
 std::string hole_plate_csv(const HolePlate& plate, std::span<const std::string> comments = {});
 
 /// Placement CSV: metadata `# stylus_offset_mm: x, y, z` (required), `# setup: NAME` and
 /// `# name: NAME` (optional; default name = source_name), optional `# format:
 /// vcmm.hole_plate_placement 1`; header `id,x_mm,y_mm,z_mm`; one measured centre a line.
-/// Throws InvalidInput "source:line: ..." (missing/duplicate metadata, bad header, field count,
-/// unparsable or non-finite number, empty or repeated id, no data).
+/// Throws InvalidInput "source:line: ..." (missing/duplicate metadata, a name or setup with a
+/// carriage return inside, bad header, field count, unparsable or non-finite number, empty or
+/// repeated id, no data).
 HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::string& source_name);
 HolePlatePlacement read_hole_plate_placement_csv_file(const std::string& path);
 std::string hole_plate_placement_csv(const HolePlatePlacement& placement,

@@ -132,10 +132,12 @@ void OutputTransaction::commit() {
           remove_quietly(it->target);
       }
       if (!d.backup.empty()) remove_quietly(d.backup);
+      // The message before discard(): discard() clears staged_, of which `s` is an element.
+      std::string message = s.path + ": cannot move the result into place: " + reason +
+                            (done.empty() ? std::string() : "; the other outputs of this run "
+                                                            "were rolled back");
       discard();
-      throw OutputError(s.path + ": cannot move the result into place: " + reason +
-                        (done.empty() ? std::string() : "; the other outputs of this run were "
-                                                        "rolled back"));
+      throw OutputError(message);
     }
     done.push_back(std::move(d));
   }

@@ -265,8 +265,12 @@ std::optional<Candidate> make_candidate(std::span<const Point2> points, const Qu
   std::optional<internal::RoundedAnnulus> a = internal::rounded_annulus(points, q.outer, q.inner);
   // An annulus needs r* < R* (equality: four co-circular contacts, zero width — decided by
   // the co-circularity test; r* > R*: the "inner" pair lies outside the "outer" circle).
-  if (!a || !a->valid) return std::nullopt;
-  Candidate k;
+  // One named result and one return (so the return is elided): moving a Candidate out of
+  // this function would move its empty lazy caches, which GCC 12 -O2 with ASan reports as
+  // maybe-uninitialized GMP reads.
+  std::optional<Candidate> result;
+  if (!a || !a->valid) return result;
+  Candidate& k = result.emplace();
   k.quad = q;
   k.points = points;
   k.rounded = *a;
@@ -287,7 +291,7 @@ std::optional<Candidate> make_candidate(std::span<const Point2> points, const Qu
   k.w_lo = std::max(0.0, w2_lo / (k.R_hi + k.r_hi) * (1.0 - 4.0 * kU));
   k.w_hi = (k.R_lo + k.r_lo) > 0.0 ? w2_hi / (k.R_lo + k.r_lo) * (1.0 + 4.0 * kU)
                                    : std::numeric_limits<double>::infinity();
-  return k;
+  return result;
 }
 
 /// p − c*, approximated in double, with a per-component error bound.

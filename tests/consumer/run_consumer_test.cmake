@@ -8,9 +8,15 @@ execute_process(COMMAND ${CMAKE_COMMAND} --install "${VCMM_BINARY_DIR}"
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "cmake --install failed (${rc})")
 endif()
+# A sanitized vcmm (-DVCMM_SANITIZE=ON) calls the ASan/UBSan runtimes: its consumer must be
+# compiled and linked with the same -fsanitize (CMake links with CMAKE_CXX_FLAGS too).
+set(consumer_flags)
+if(CONSUMER_SANITIZE)
+  set(consumer_flags "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined")
+endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${CONSUMER_SOURCE_DIR}" -B "${WORK_DIR}/build"
                         -G "${CMAKE_GENERATOR}" -DCMAKE_BUILD_TYPE=Release
-                        "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix"
+                        "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix" ${consumer_flags}
                 RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "configuring the consumer project against the installed package failed")

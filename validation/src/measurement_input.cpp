@@ -5,6 +5,8 @@
 #include <fstream>
 #include <iterator>
 #include <numbers>
+#include <optional>
+#include <span>
 #include <sstream>
 #include <vector>
 
@@ -51,22 +53,33 @@ em::Measurement base(const MeasurementSetup& s, const std::string& source) {
   return m;
 }
 
-// Radial unit normals in the workpiece plane about the LS centre of the points' xy.
-void radial_normals(em::Measurement& m, SurfaceSide side, const std::string& source) {
-  const Eigen::Index n = m.size();
-  std::vector<geometry::Point2> xy(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) xy[static_cast<std::size_t>(i)] = {m.points_mm(0, i), m.points_mm(1, i)};
-  geometry::LeastSquaresCircle ls;
+// The least-squares centre of the points' xy; `purpose` says what it is for in the message.
+geometry::Point2 fitted_center(std::span<const geometry::Point2> xy, const std::string& source,
+                               const char* purpose) {
   try {
-    ls = geometry::least_squares_circle(xy);
+    return geometry::least_squares_circle(xy).center;
   } catch (const InvalidInput& e) {
-    throw InvalidInput(source + ": the points do not define a circle for the surface normals: " +
+    throw InvalidInput(source + ": the points do not define a circle for " + purpose + ": " +
                        e.what());
   }
+}
+
+// Radial unit normals in the workpiece plane about `center`, or when none is known about the
+// LS centre of the points' xy.
+void radial_normals(em::Measurement& m, SurfaceSide side, const std::string& source,
+                    std::optional<geometry::Point2> center) {
+  const Eigen::Index n = m.size();
+  if (!center) {
+    std::vector<geometry::Point2> xy(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i)
+      xy[static_cast<std::size_t>(i)] = {m.points_mm(0, i), m.points_mm(1, i)};
+    center = fitted_center(xy, source, "the surface normals");
+  }
+  const geometry::Point2 c = *center;
   const double sign = side == SurfaceSide::inner ? 1.0 : -1.0;
   m.normals.resize(3, n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double dx = ls.center.x - m.points_mm(0, i), dy = ls.center.y - m.points_mm(1, i);
+    const double dx = c.x - m.points_mm(0, i), dy = c.y - m.points_mm(1, i);
     const double r = std::hypot(dx, dy);
     if (!(r > 0.0))
       throw InvalidInput(source + ": point " + std::to_string(i + 1) +
@@ -88,11 +101,10 @@ em::Measurement measurement_from_points(const geometry::PointTable& table,
   const bool has_z = !table.z.empty();
   const bool need_location = setup.frame == PointFrame::workpiece || !has_z;
   require(setup, source, "plain points", need_location, false);
-  if (setup.frame == PointFrame::machine && !has_z && !setup.location_mm)
-    throw InvalidInput(source + ": two-column points in the machine frame have no height");
   em::Measurement m = base(setup, source);
   const std::size_t n = table.points.size();
   if (n < 3) throw InvalidInput(source + ": " + std::to_string(n) + " points: a circle needs 3");
+  std::optional<geometry::Point2> center;  // in the workpiece frame, when already fitted
   Eigen::Matrix3Xd p(3, static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i)
     p.col(static_cast<Eigen::Index>(i)) =
@@ -106,21 +118,15 @@ em::Measurement measurement_from_points(const geometry::PointTable& table,
       if (!has_z)  // two columns: the points lie in the plane of the given location
         p.row(2).setConstant(setup.location_mm->z());
     } else {  // the ring's machine position from the points themselves
-      std::vector<geometry::Point2> xy(table.points.begin(), table.points.end());
-      geometry::LeastSquaresCircle ls;
-      try {
-        ls = geometry::least_squares_circle(xy);
-      } catch (const InvalidInput& e) {
-        throw InvalidInput(source + ": the points do not define a circle for the location: " +
-                           e.what());
-      }
-      m.placement.location_mm = Eigen::Vector3d(ls.center.x, ls.center.y, p.row(2).mean());
+      const geometry::Point2 c = fitted_center(table.points, source, "the location");
+      m.placement.location_mm = Eigen::Vector3d(c.x, c.y, p.row(2).mean());
+      center = geometry::Point2{0.0, 0.0};  // the location is the fitted centre
     }
     // workpiece = Rz(−θ)·(machine − location)
     const Eigen::Matrix3d rt = m.placement.rotation().transpose();
     m.points_mm = rt * (p.colwise() - m.placement.location_mm);
   }
-  radial_normals(m, setup.side, source);
+  radial_normals(m, setup.side, source, center);
   em::validate_measurement(m, source.c_str());
   return m;
 }

@@ -51,9 +51,10 @@ struct MeasurementSetup {
 };
 
 /// A Measurement from plain points. Throws InvalidInput (geometry/point.h) naming `source` and
-/// every missing item at once ("ring.csv: plain points need --mode, --temperature and
-/// --stylus-offset"), or a rule broken (too few points for a circle, a two-column file in the
-/// machine frame without a location, non-finite setup values). O(n).
+/// every missing item at once ("ring.csv: plain points carry no metadata; give --mode …,
+/// --temperature … and --stylus-offset …"; the location counts as missing where it is
+/// required, above), or a rule broken (too few points for a circle, non-finite setup values).
+/// O(n).
 errormodel::Measurement measurement_from_points(const geometry::PointTable& table,
                                                 const MeasurementSetup& setup,
                                                 const std::string& source);

@@ -9,9 +9,11 @@ claim check, and the Monte Carlo: seed reproducibility, progress, the GIL releas
 """
 
 import json
+import sys
 import math
 import os
 import pathlib
+import signal
 import subprocess
 import threading
 
@@ -352,3 +354,24 @@ def test_uncertainty_equals_cli_on_a_plain_point_file():
     got = json.loads(r.json())
     assert got["measurands"] == expected["measurands"]
     assert got["correlation_diameter_roundness"] == expected["correlation_diameter_roundness"]
+
+
+def test_the_tutorial_plot_runs(tmp_path):
+    pytest.importorskip("matplotlib")
+    script = SOURCE_DIR / "examples" / "python" / "roundness_polar.py"
+    target = tmp_path / "polar.png"
+    out = subprocess.run([sys.executable, str(script), str(SCAN), str(target)], check=True,
+                         capture_output=True, text=True, env=dict(os.environ)).stdout
+    assert "RONt (MZ, 50 UPR) = 0.1427 um; certified: True" in out
+    assert target.stat().st_size > 10000
+
+
+def test_ctrl_c_stops_the_monte_carlo():
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            vcmm.uncertainty(MODEL, measured(), trials=1_000_000, seed=1, threads=1,
+                             bias_treatment="paper")
+    finally:
+        timer.cancel()

@@ -75,6 +75,12 @@ def test_three_lobed_ring_analytic():
     assert r.coverage.closed
 
 
+def test_certificates_checked_on_request():
+    r = vcmm.roundness(lobed_ring(), verify_certificates=False)
+    assert all(c.certified is None for c in r.circles.values())
+    assert r.mz.ront == pytest.approx(2 * A, abs=1e-12)
+
+
 def test_individual_fitters_match_roundness():
     pts = lobed_ring()
     r = vcmm.roundness(pts)
@@ -375,3 +381,23 @@ def test_ctrl_c_stops_the_monte_carlo():
                              bias_treatment="paper")
     finally:
         timer.cancel()
+
+
+def test_measurement_from_arrays():
+    m = measured()
+    again = vcmm.Measurement(m.points, m.normals, m.location, m.orientation_deg, m.mode,
+                             m.temperature_c, m.stylus_offset)
+    assert np.array_equal(again.points, m.points) and len(again) == 360
+    assert again.csv() == m.csv()
+    with pytest.raises(vcmm.InvalidInput, match=r"normal 0 must be a unit vector.*\|n\| = 2"):
+        vcmm.Measurement(m.points, 2 * m.normals, m.location)
+    with pytest.raises(vcmm.InvalidInput, match=r"normals: expected an \(n, 3\) array"):
+        vcmm.Measurement(m.points, m.normals[:, :2], m.location)
+    # Plain (x, y) points in the workpiece frame need the location.
+    xy = m.points[:, :2]
+    with pytest.raises(vcmm.InvalidInput, match="location"):
+        vcmm.measurement(xy, mode="touch", temperature_c=20.0, stylus_offset=(0, 0, -150),
+                         frame="workpiece")
+    w = vcmm.measurement(xy, mode="touch", temperature_c=20.0, stylus_offset=(0, 0, -150),
+                         frame="workpiece", location=(400, 300, 150))
+    assert w.mode == "touch_trigger" and w.location == (400.0, 300.0, 150.0)

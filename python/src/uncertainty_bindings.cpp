@@ -1,13 +1,15 @@
 // python/src/uncertainty_bindings.cpp — the virtual CMM and the Monte Carlo uncertainty of a
 // ring measurement for Python: digital models, measurements (numpy in and out), the
 // simulation of one measurement, and validation::evaluate_ring_uncertainty with its samples as
-// numpy arrays, the GIL released while it runs, a progress callback and Ctrl-C.
+// numpy arrays, the GIL released while it runs, a progress callback and Ctrl-C; a validation
+// campaign run (validation::run_campaign) with its tables as lists of dicts.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -20,6 +22,8 @@
 #include "vcmm/errormodel/random_source.h"
 #include "vcmm/errormodel/ring_gauge.h"
 #include "vcmm/errormodel/virtual_cmm.h"
+#include "vcmm/validation/campaign.h"
+#include "vcmm/validation/campaign_run.h"
 #include "vcmm/validation/demo_world.h"
 #include "vcmm/validation/measurement_input.h"
 #include "vcmm/validation/provenance.h"
@@ -115,6 +119,16 @@ va::MeasurementSetup setup_of(const std::optional<std::string>& mode,
   s.frame = frame == "workpiece" ? va::PointFrame::workpiece : va::PointFrame::machine;
   s.side = surface == "outer" ? va::SurfaceSide::outer : va::SurfaceSide::inner;
   return s;
+}
+
+/// The GIL back, Ctrl-C and the caller's progress callback (None: none): the progress hook of
+/// the library's long runs, called from the calling thread while the workers run.
+std::function<void(std::uint64_t, std::uint64_t)> python_progress(const py::object& progress) {
+  return [&progress](std::uint64_t done, std::uint64_t planned) {
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (!progress.is_none()) progress(done, planned);
+  };
 }
 
 /// One uncertainty evaluation with the options it ran with (the reports need both).
@@ -394,14 +408,9 @@ void bind_ring_uncertainty(py::module_& m) {
         if (pilot_trials) o.shrinkage.pilot_trials = *pilot_trials;
         if (surrogate_trials) o.shrinkage.surrogate_trials = *surrogate_trials;
         o.provenance = {{"source", "python"}};
-        // Called from this thread about every 100 ms while the workers run: back under the
-        // GIL, Ctrl-C (KeyboardInterrupt) and the caller's callback; either one raising stops
-        // the run and the exception reaches the caller.
-        o.monte_carlo.progress = [&progress](std::uint64_t done, std::uint64_t planned) {
-          py::gil_scoped_acquire acquire;
-          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-          if (!progress.is_none()) progress(done, planned);
-        };
+        // About every 100 ms: Ctrl-C (KeyboardInterrupt) and the caller's callback; either one
+        // raising stops the run and the exception reaches the caller.
+        o.monte_carlo.progress = python_progress(progress);
         {
           py::gil_scoped_release release;
           run.result = va::evaluate_ring_uncertainty(model, measured, o);
@@ -419,6 +428,96 @@ void bind_ring_uncertainty(py::module_& m) {
   m.def("revision", [] { return std::string(va::vcmm_revision()); });
 }
 
+py::dict measurand_dict(const va::MeasurandOutcome& o) {
+  py::dict d;
+  d["has_reference"] = o.has_reference;
+  d["reference_mm"] = o.reference_mm;
+  d["u_reference_mm"] = o.u_reference_mm;
+  d["reference_method"] = o.reference_method;
+  d["estimate_mm"] = o.estimate_mm;
+  d["u_mm"] = o.u_mm;
+  d["mc_mean_mm"] = o.mc_mean_mm;
+  d["interval_low_mm"] = o.interval_low_mm;
+  d["interval_high_mm"] = o.interval_high_mm;
+  d["treatment"] = o.treatment;
+  d["bias_mm"] = o.bias_mm;
+  d["bias_standard_error_mm"] = o.bias_standard_error_mm;
+  d["bias_uncertainty_mm"] = o.bias_uncertainty_mm;
+  d["corrected_mm"] = o.corrected_mm;
+  d["u_corrected_mm"] = o.u_corrected_mm;
+  d["correction_applied"] = o.correction_applied;
+  d["note"] = o.note;
+  d["bias_paper_mm"] = o.bias_paper_mm;
+  d["corrected_paper_mm"] = o.corrected_paper_mm;
+  d["u_corrected_paper_mm"] = o.u_corrected_paper_mm;
+  d["paper_applied"] = o.paper_applied;
+  d["corrected_denoised_mm"] = o.corrected_denoised_mm;
+  d["u_denoised_mm"] = o.u_denoised_mm;
+  d["denoised_applied"] = o.denoised_applied;
+  d["en"] = o.en;
+  d["en_corrected"] = o.en_corrected;
+  d["en_paper"] = o.en_paper;
+  d["en_denoised"] = o.en_denoised;
+  d["en_inflated"] = o.en_inflated;
+  d["zeta"] = o.zeta;
+  d["zeta_corrected"] = o.zeta_corrected;
+  d["true_mm"] = o.true_mm;
+  return d;
+}
+
+void bind_campaign(py::module_& m) {
+  m.def(
+      "run_campaign",
+      [](const std::string& campaign_path, const std::string& output_dir, unsigned threads,
+         bool denoised, const py::object& progress) {
+        const va::Campaign campaign = va::read_campaign_file(campaign_path);
+        va::CampaignRunOptions o;
+        o.threads = threads;
+        o.denoised_treatment = denoised;
+        o.progress = python_progress(progress);
+        o.provenance = {{"source", "python"}};
+        va::CampaignOutcome outcome;
+        {
+          py::gil_scoped_release release;
+          outcome = va::run_campaign(campaign, output_dir, o);
+        }
+        py::list measurements, summary, treatments;
+        for (const va::MeasurementOutcome& x : outcome.measurements) {
+          py::dict d;
+          d["id"] = x.id;
+          d["location"] = x.location;
+          d["orientation_deg"] = x.orientation_deg;
+          d["height"] = std::string(va::to_string(x.height));
+          d["mode"] = std::string(em::to_string(x.mode));
+          d["points"] = x.points;
+          d["seed"] = x.seed;
+          d["trials"] = x.trials;
+          d["diameter"] = measurand_dict(x.diameter);
+          d["roundness"] = measurand_dict(x.roundness);
+          d["wall_seconds"] = x.wall_seconds;
+          d["resumed"] = x.resumed;
+          measurements.append(d);
+        }
+        for (const va::SummaryRow& r : outcome.summary)
+          summary.append(py::dict("factor"_a = r.factor, "level"_a = r.level,
+                                  "measurand"_a = r.measurand, "treatment"_a = r.treatment,
+                                  "n"_a = r.n, "share_within_1"_a = r.share_within_1,
+                                  "mean_en"_a = r.mean_en, "rms_en"_a = r.rms_en));
+        for (const va::TreatmentRow& r : outcome.treatments)
+          treatments.append(py::dict("measurand"_a = r.measurand, "treatment"_a = r.treatment,
+                                     "n"_a = r.n, "mean_en"_a = r.mean_en, "rms_en"_a = r.rms_en,
+                                     "share_within_1"_a = r.share_within_1,
+                                     "mean_error_mm"_a = r.mean_error_mm,
+                                     "rms_error_mm"_a = r.rms_error_mm));
+        return py::dict("measurements"_a = measurements, "summary"_a = summary,
+                        "treatments"_a = treatments, "computed"_a = outcome.computed,
+                        "resumed"_a = outcome.resumed, "cancelled"_a = outcome.cancelled,
+                        "wall_seconds"_a = outcome.wall_seconds);
+      },
+      "campaign"_a, "output_dir"_a, "threads"_a = 0, "denoised"_a = false,
+      "progress"_a = py::none());
+}
+
 }  // namespace
 
 void bind_uncertainty(py::module_& m) {
@@ -426,6 +525,7 @@ void bind_uncertainty(py::module_& m) {
   bind_simulate(m);
   bind_results(m);
   bind_ring_uncertainty(m);
+  bind_campaign(m);
 }
 
 }  // namespace vcmm::python

@@ -342,3 +342,23 @@ def uncertainty(model, data, *, trials=100000, adaptive_tolerance=None, seed=1, 
         bias_treatment=bias_treatment, pilot_trials=pilot_trials,
         surrogate_trials=surrogate_trials, sources=None if sources is None else list(sources),
         progress=progress)
+
+
+def validate(campaign, output_dir, *, threads=0, denoised=False, progress=None):
+    """Runs a validation campaign, as ``vcmm validate CAMPAIGN -o OUTPUT_DIR``
+    (``vcmm::validation::run_campaign``; docs/validation.md): the uncertainty of every
+    measurement, E_n and zeta against the references under each bias treatment, and the
+    output files in ``output_dir`` (results.csv/json, summary, samples, run_info.json). A rerun
+    resumes: finished measurements are loaded, not recomputed. ``denoised`` adds treatment (b).
+    progress(done, planned) as in :func:`uncertainty`; the GIL is released, Ctrl-C stops.
+
+    Returns plain tables (lists of dicts, for ``pandas.DataFrame`` or ``csv`` alike):
+    ``measurements`` (id, location, orientation_deg, height, mode, points, seed, trials and
+    per measurand ``diameter``/``roundness`` a dict: estimate_mm, u_mm, reference_mm,
+    corrected_mm, u_corrected_mm, en, en_corrected, en_paper, ... — values in mm, NaN where
+    there is nothing), ``summary`` (E_n statistics per factor level and treatment),
+    ``treatments`` (with known truth), ``computed``, ``resumed``, ``cancelled``,
+    ``wall_seconds``.
+    """
+    return _vcmm.run_campaign(_os.fspath(campaign), _os.fspath(output_dir), int(threads),
+                              bool(denoised), progress)

@@ -401,3 +401,47 @@ def test_measurement_from_arrays():
     w = vcmm.measurement(xy, mode="touch", temperature_c=20.0, stylus_offset=(0, 0, -150),
                          frame="workpiece", location=(400, 300, 150))
     assert w.mode == "touch_trigger" and w.location == (400.0, 300.0, 150.0)
+
+
+def test_validate_equals_the_cli(tmp_path):
+    exe = os.environ.get("VCMM_EXE")
+    if not exe:
+        pytest.skip("VCMM_EXE (the vcmm command) not given")
+    world = tmp_path / "world"
+    (world / "measurements").mkdir(parents=True)
+    (world / "model.json").write_text((SOURCE_DIR / "examples" / "cmm_model.json").read_text())
+    entries = []
+    for i, (location, orientation) in enumerate((((400, 300, 150), 0), ((500, 400, 200), 90))):
+        m = vcmm.simulate(MODEL, 171, location, points=360, orientation_deg=orientation,
+                          seed=20 + i)
+        name = f"M{i}"
+        (world / "measurements" / f"{name}.csv").write_text(m.csv())
+        entries.append({"id": name, "points": f"measurements/{name}.csv",
+                        "setup": {"location": f"L{i}", "location_mm": list(location),
+                                  "orientation_deg": orientation, "height": "middle",
+                                  "mode": "scanning"},
+                        "reference": {"roundness": {"value_um": 0.2, "u_um": 0.01},
+                                      "diameter": {"value_mm": 171.0, "u_um": 0.05}}})
+    campaign = {"schema": "vcmm.campaign", "schema_version": 1, "model": "model.json",
+                "evaluation": {"trials": 200, "seed": 3, "bias_treatment": "paper"},
+                "measurements": entries}
+    (world / "campaign.json").write_text(json.dumps(campaign))
+    calls = []
+    got = vcmm.validate(world / "campaign.json", tmp_path / "py", threads=2,
+                        progress=lambda d, p: calls.append(d))
+    subprocess.run([exe, "validate", str(world / "campaign.json"), "-o", str(tmp_path / "cli"),
+                    "--threads", "2", "--progress", "never"], check=True, capture_output=True)
+    assert [m["id"] for m in got["measurements"]] == ["M0", "M1"]
+    assert got["computed"] == 2 and not got["cancelled"] and calls
+    assert all(math.isfinite(m["roundness"]["en"]) for m in got["measurements"])
+    for table in ("results.csv", "summary.csv"):
+        assert (tmp_path / "py" / table).read_text() == (tmp_path / "cli" / table).read_text()
+    again = vcmm.validate(world / "campaign.json", tmp_path / "py")
+    assert again["resumed"] == 2
+    # The same numbers, loaded instead of computed (NaN where nothing: compared as text).
+    def numbers(measurements):
+        return json.dumps([{k: v for k, v in m.items() if k not in ("wall_seconds", "resumed")}
+                           for m in measurements], sort_keys=True)
+
+    assert all(m["resumed"] for m in again["measurements"])
+    assert numbers(again["measurements"]) == numbers(got["measurements"])

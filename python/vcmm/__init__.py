@@ -26,8 +26,24 @@ Tutorial: docs/python.md.
 
 import json as _json
 import os as _os
+import sys as _sys
 
-from . import _vcmm
+try:
+    import numpy as _numpy  # noqa: F401  (the compiled part takes and returns numpy arrays)
+except ImportError as _error:
+    raise ImportError(
+        f"vcmm needs numpy, which this Python ({_sys.executable}) cannot import: run the "
+        "interpreter vcmm was built for (CMake's VCMM_PYTHON3, /usr/bin/python3 by default) "
+        "or install numpy for this one (docs/python.md, 'Which Python')") from _error
+try:
+    from . import _vcmm
+except ImportError as _error:
+    _built = sorted(f for f in _os.listdir(_os.path.dirname(__file__)) if f.startswith("_vcmm"))
+    raise ImportError(
+        f"vcmm's compiled part does not load in this Python ({_sys.executable}, "
+        f"{_sys.version.split()[0]}): found {', '.join(_built) or 'no _vcmm module'} — it was "
+        "built for another interpreter; run that one (CMake's VCMM_PYTHON3) or rebuild with "
+        "-DVCMM_PYTHON3=" + _sys.executable + " (docs/python.md, 'Which Python')") from _error
 from ._vcmm import (  # noqa: F401  (re-exported)
     AngularCoverage,
     BiasCorrection,

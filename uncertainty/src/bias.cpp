@@ -127,6 +127,22 @@ double standard_normal_quantile(double p) {
   return x - u / (1.0 + 0.5 * x * u);
 }
 
+namespace {
+
+/// Upper end q of the interval [0, q] of probability p of N(mean, u²) truncated to [0, ∞):
+/// P(0 ≤ X ≤ q) = p · P(X ≥ 0), i.e. the upper tail beyond q is (1 − p) · Q(−mean/u). Where
+/// that tail underflows (mean below 0 by more than ~37 u) the truncated normal is an
+/// exponential of rate |mean|/u² to first order: q = u² ln(1/(1 − p)) / |mean|. u = 0: 0.
+double truncated_normal_upper_end(double mean, double u, double p) {
+  if (!(u > 0.0)) return std::max(mean, 0.0);
+  const double above_zero = 0.5 * std::erfc(-mean / (u * std::sqrt(2.0)));
+  const double tail = (1.0 - p) * above_zero;
+  if (tail > 1e-300) return std::max(0.0, mean - u * standard_normal_quantile(tail));
+  return u * u * std::log(1.0 / (1.0 - p)) / std::fabs(mean);
+}
+
+}  // namespace
+
 BiasCorrection correct_bias_at_surrogate(double estimate, double surrogate_value,
                                          const MeasurandSummary& at_surrogate,
                                          const MeasurandSummary& surrogate_spread,
@@ -189,6 +205,15 @@ BiasCorrection correct_bias_at_surrogate(double estimate, double surrogate_value
   if (non_negative && c.interval.low < 0.0) {
     c.interval.low = 0.0;
     c.note += "; the interval's lower end clamped at 0";
+    // Far below 0 the reflected interval can end below 0 too ([0, negative] is no interval):
+    // its upper end is then at least that of N(corrected, u_c) truncated to [0, ∞).
+    const double floor_high =
+        truncated_normal_upper_end(corrected_raw, c.standard_uncertainty, mc.probability);
+    if (c.interval.high < floor_high) {
+      c.interval.high = floor_high;
+      c.note += ", its upper end that of the normal distribution of the corrected value "
+                "truncated at 0";
+    }
   }
   c.note += ".";
   return c;

@@ -73,7 +73,9 @@ BiasCorrection correct_bias(double estimate, const MeasurandSummary& summary,
 /// with [y_low, y_high] the probabilistically symmetric interval of the y*, k_p the normal
 /// coverage factor of its probability (1.96 for 0.95): the Monte Carlo interval reflected
 /// about the corrected value and widened by the bias uncertainty taken as normal; its lower
-/// end clamped at 0 for a non-negative quantity.
+/// end clamped at 0 for a non-negative quantity, whose upper end is then at least the q of
+/// N(y − b, u_c²) truncated to [0, ∞) with P(0 ≤ X ≤ q) = p·P(X ≥ 0) (so the interval never
+/// ends below 0 when the uncorrected value lies far below the bias).
 /// Throws InvalidInput for NaN/inf inputs, a count of 0, a negative standard uncertainty, an
 /// interval with low > high, or `non_negative` with a negative estimate or f_s. O(1).
 BiasCorrection correct_bias_at_surrogate(double estimate, double surrogate_value,

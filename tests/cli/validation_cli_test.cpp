@@ -104,6 +104,34 @@ TEST(CliUncertainty, BadOptionsAndInputs) {
   EXPECT_NE(s.err.find("cut-off"), std::string::npos) << s.err;
 }
 
+TEST(CliUncertainty, PlainCmmExportWithMetadataOptions) {
+  // The bundled example export (x,y,z in the model's machine frame, no metadata header) runs
+  // with the metadata given as options — the command docs/cli.md shows.
+  const std::string scan = std::string(VCMM_SOURCE_DIR) + "/examples/profiles/ring_171mm_scan.csv";
+  const std::string base = "uncertainty --model '" + kModel + "' --points '" + scan +
+                           "' --progress never --trials 300 --pilot-trials 100 ";
+  const CliRun r = run(base + "--mode scanning --temperature 20.3 --stylus-offset 0,0,-100 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["measurands"]["diameter"]["estimate"].get<double>(), 171.0, 0.002);
+  EXPECT_EQ(j["provenance"]["points_sha256"], vcmm::validation::sha256_hex(slurp(scan)));
+  for (const char* m : {"diameter", "roundness"}) {
+    const auto& ci = j["measurands"][m]["corrected_interval"];
+    EXPECT_LT(ci["low"].get<double>(), ci["high"].get<double>()) << m;
+  }
+  // Every missing item named at once with the file that lacks them, exit 3.
+  const CliRun missing = run(base + "--json");
+  EXPECT_EQ(missing.exit_code, 3) << missing.err;
+  EXPECT_NE(missing.err.find("ring_171mm_scan.csv"), std::string::npos) << missing.err;
+  for (const char* k : {"--mode", "--temperature", "--stylus-offset"})
+    EXPECT_NE(missing.err.find(k), std::string::npos) << k << ": " << missing.err;
+  // Points outside the model's travel with this stylus: refused naming the axis (exit 3).
+  const CliRun travel =
+      run(base + "--mode scanning --temperature 20.3 --stylus-offset 0,0,200 --json");
+  EXPECT_EQ(travel.exit_code, 3) << travel.err;
+  EXPECT_NE(travel.err.find("Z axis"), std::string::npos) << travel.err;
+}
+
 TEST(CliUncertainty, OutputsAppearTogetherOrNotAtAll) {
   // The report's directory exists, the samples' does not: exit 3 naming the path and the
   // reason, before any trial is run, and no report either.

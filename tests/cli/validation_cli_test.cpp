@@ -4,6 +4,7 @@
 // its resume.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -116,9 +117,24 @@ TEST(CliUncertainty, PlainCmmExportWithMetadataOptions) {
   EXPECT_NEAR(j["measurands"]["diameter"]["estimate"].get<double>(), 171.0, 0.002);
   EXPECT_EQ(j["provenance"]["points_sha256"], vcmm::validation::sha256_hex(slurp(scan)));
   for (const char* m : {"diameter", "roundness"}) {
-    const auto& ci = j["measurands"][m]["corrected_interval"];
+    const auto& q = j["measurands"][m];
+    const auto& ci = q["corrected_interval"];
     EXPECT_LT(ci["low"].get<double>(), ci["high"].get<double>()) << m;
+    // The note's numbers are the JSON's, in its unit (issue 13: "bias 0.4378 um" beside a
+    // note saying "Bias 0.0004378").
+    char bias[32];
+    std::snprintf(bias, sizeof bias, "%.4g %s", q["bias"].get<double>(),
+                  q["unit"] == "um" ? "µm" : "mm");
+    EXPECT_NE(q["note"].get<std::string>().find(bias), std::string::npos)
+        << m << ": " << bias << " not in " << q["note"];
   }
+  // The table: U (k = 2) and both intervals, the bias never printed as "-0.0…0".
+  const CliRun t = run(base + "--mode scanning --temperature 20.3 --stylus-offset 0,0,-100");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("expanded U (k = 2)"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("% interval (shortest)"), std::string::npos) << t.out;
+  for (const char* zero : {" -0.00 ", " -0.0000 ", " -0.00000 "})
+    EXPECT_EQ(t.out.find(zero), std::string::npos) << t.out;
   // Every missing item named at once with the file that lacks them, exit 3.
   const CliRun missing = run(base + "--json");
   EXPECT_EQ(missing.exit_code, 3) << missing.err;

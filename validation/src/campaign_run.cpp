@@ -141,10 +141,11 @@ void score(MeasurandOutcome& o, double k) {
 }
 
 /// The outcome of one measurand from the uncertainty evaluation: the study's run on x̂, the
-/// campaign's treatment (`chosen`) and the study's (`paper`).
+/// campaign's treatment (`chosen`) and the study's (`paper`). The note's numbers are given in
+/// the measurand's reporting unit (`scale` per mm, `unit`).
 void fill_outcome(MeasurandOutcome& o, double estimate, const uncertainty::MeasurandSummary& s,
                   const uncertainty::BiasCorrection& chosen, std::string_view treatment,
-                  const uncertainty::BiasCorrection& paper) {
+                  const uncertainty::BiasCorrection& paper, double scale, std::string_view unit) {
   o.estimate_mm = estimate;
   o.u_mm = s.standard_uncertainty;
   o.mc_mean_mm = s.mean;
@@ -157,7 +158,7 @@ void fill_outcome(MeasurandOutcome& o, double estimate, const uncertainty::Measu
   o.corrected_mm = chosen.corrected;
   o.u_corrected_mm = chosen.standard_uncertainty;
   o.correction_applied = chosen.applied;
-  o.note = chosen.note;
+  o.note = uncertainty::describe(chosen, scale, unit);
   o.bias_paper_mm = paper.bias;
   o.corrected_paper_mm = paper.corrected;
   o.u_corrected_paper_mm = paper.standard_uncertainty;
@@ -583,9 +584,9 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
       break;
     }
     fill_outcome(m.diameter, a.estimate.diameter_mm, a.monte_carlo.summaries[diameter],
-                 a.diameter, "paper", a.diameter);
+                 a.diameter, "paper", a.diameter, 1.0, "mm");
     fill_outcome(m.roundness, a.estimate.roundness_mm, a.monte_carlo.summaries[roundness],
-                 a.roundness, to_string(a.roundness_treatment), a.roundness_paper);
+                 a.roundness, to_string(a.roundness_treatment), a.roundness_paper, 1000.0, "µm");
 
     // Treatment (b): the same virtual experiment on the denoised virtual truth.
     m.diameter.corrected_denoised_mm = m.diameter.u_denoised_mm = kNaN;

@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "run_control.h"
 #include "vcmm/characterization/cmm_points_file.h"
+#include "vcmm/characterization/identical_inputs.h"
 #include "vcmm/characterization/noise.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/errors.h"
@@ -55,6 +56,12 @@ std::vector<geometry::Point2> read_profile(const std::string& path, em::ProbingM
 int run_noise(const NoiseOptions& o) {
   constexpr const char* kName = "vcmm characterize noise";
   try {
+    // A scan given twice (as --scan and --scan-repeat, or as --touch) is no second measurement.
+    std::vector<ch::InputFile> inputs{{"--reference", o.reference}};
+    if (!o.scan.empty()) inputs.push_back({"--scan", o.scan});
+    if (!o.scan_repeat.empty()) inputs.push_back({"--scan-repeat", o.scan_repeat});
+    if (!o.touch.empty()) inputs.push_back({"--touch", o.touch});
+    ch::refuse_identical_inputs(inputs);
     const ch::ReferenceProfile reference = ch::read_reference_profile_csv_file(o.reference);
     std::optional<double> fallback_scan, fallback_touch;
     if (!o.model.empty()) {

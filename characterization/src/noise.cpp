@@ -11,6 +11,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "output_checks.h"
 #include "vcmm/errormodel/errors.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
@@ -57,6 +58,24 @@ void check_equiangular(const ReferenceProfile& p, const std::string& prefix) {
                          number(expected * 180.0 / kPi) + " deg");
   }
 }
+
+// The largest reference deviation accepted (mm): a roundness instrument's gauge range is about
+// ±1 mm, and a calibrated ring's form is a few µm; 1e300 µm (a corrupt file) would overflow
+// every square downstream.
+constexpr double kMaxReferenceDeviationMm = 1.0;
+
+void check_reference_range(const ReferenceProfile& p, const std::string& prefix) {
+  for (std::size_t j = 0; j < p.deviation_mm.size(); ++j)
+    if (!(std::abs(p.deviation_mm[j]) <= kMaxReferenceDeviationMm))
+      throw InvalidInput(prefix + geometry::profile_sample_location(p, j) + ": the deviation " +
+                         number(p.deviation_mm[j] * kUmPerMm) +
+                         " um lies outside a roundness instrument's range (at most 1000 um "
+                         "from the mean radius; mm given as um?)");
+}
+
+// The largest noise σ written (mm): a CMM's probing noise is 0.01–10 µm; 1 mm is no noise but
+// the wrong artefact, reference or units.
+constexpr double kMaxNoiseSigmaMm = 1.0;
 
 /// Fourier coefficients a_k, b_k (k = 2 … K) of the reference about α_0.
 struct ReferenceSeries {
@@ -455,8 +474,31 @@ std::string sigma_text(const SigmaEstimate& s) {
   return os.str();
 }
 
+// "reference r.csv, scan s.csv, …": what a result was computed from, for refusals.
+std::string inputs_text(const NoiseCharacterization& c) {
+  std::string s = "reference " + c.reference_source;
+  if (c.scan || c.repeated) s += ", scan " + c.scan_source;
+  if (c.repeated) s += ", repeat scan " + c.repeat_source;
+  if (c.touch) s += ", touch points " + c.touch_source;
+  return s;
+}
+
+// σ finite and in the physical range of a CMM's noise, naming what it came from.
+void check_sigma(double sigma_mm, const char* what, const NoiseCharacterization& c) {
+  if (!(sigma_mm >= 0.0 && sigma_mm <= kMaxNoiseSigmaMm))
+    throw InvalidInput(std::string("the ") + what + " sigma " + number(sigma_mm * kUmPerMm) +
+                       " um is outside the range of a CMM's noise (0 to 1000 um): computed from " +
+                       inputs_text(c) + " — the wrong artefact, reference or units; nothing written");
+}
+
 nlohmann::json noise_section(const NoiseCharacterization& c, std::optional<double> fb_scan,
                              std::optional<double> fb_touch) {
+  if (c.repeated) {
+    check_sigma(c.repeated->noise.sigma_mm, "scanning", c);
+    check_sigma(c.repeated->roughness.sigma_mm, "roughness", c);
+  }
+  if (c.scan) check_sigma(c.scan->sigma.sigma_mm, "scanning", c);
+  if (c.touch) check_sigma(c.touch->sigma.sigma_mm, "touch-trigger", c);
   if (!c.scan && !c.repeated && !c.touch)
     throw InvalidInput("noise_section_json: no scan or touch-trigger data were characterised");
   for (const auto& [v, name] : {std::pair{fb_scan, "scanning"}, std::pair{fb_touch, "touch"}})
@@ -538,17 +580,20 @@ void validate_reference_profile(const ReferenceProfile& profile, const char* cal
   const std::string prefix = std::string(caller) + ": reference";
   geometry::validate_roundness_profile(profile, prefix.c_str());
   check_equiangular(profile, prefix + ": ");
+  check_reference_range(profile, prefix + ": ");
 }
 
 ReferenceProfile read_reference_profile_csv(std::istream& in, const std::string& source) {
   ReferenceProfile p = geometry::read_roundness_profile_csv(in, source);
   check_equiangular(p, "");
+  check_reference_range(p, "");
   return p;
 }
 
 ReferenceProfile read_reference_profile_csv_file(const std::string& path) {
   ReferenceProfile p = geometry::read_roundness_profile_csv_file(path);
   check_equiangular(p, "");
+  check_reference_range(p, "");
   return p;
 }
 
@@ -681,6 +726,15 @@ RepeatedScanResult repeated_scan_noise(std::span<const Point2> scan, std::span<c
                          "(same track, same start, same sense); point " +
                          std::to_string(i) + " differs by " +
                          number(wrap(p2.theta[i] - p1.theta[i]) / step) + " steps");
+  // A scan given twice (the same file, or a copy) would give σ_noise = 0 and call the whole
+  // scatter roughness.
+  bool identical = true;
+  for (std::size_t i = 0; i < n && identical; ++i)
+    identical = scan[i].x == repeat[i].x && scan[i].y == repeat[i].y;
+  if (identical)
+    throw InvalidInput(std::string(kCaller) +
+                       ": the repeat scan is point for point identical to the first: one scan "
+                       "given twice; the repeat must be a second measurement of the track");
   RepeatedScanResult out;
   std::vector<double> g;
   out.first = scan_core(p1, reference, options, kCaller, &g);
@@ -695,6 +749,10 @@ RepeatedScanResult repeated_scan_noise(std::span<const Point2> scan, std::span<c
   std::vector<double> low_mean;
   const double s_minus = high_pass_sum_squares(diff, cutoff) / lambda;            // 2 σ_n²
   const double s_plus = high_pass_sum_squares(mean, cutoff, &low_mean) / lambda;  // σ_r² + σ_n²/2
+  if (!(s_minus > 0.0))
+    throw InvalidInput(std::string(kCaller) +
+                       ": the two scans do not differ above the cut-off (noise sigma 0): the same "
+                       "measurement given twice?");
   out.systematic = systematic_profile(p1.theta, low_mean, s_plus * f.low_pass_variance_factor);
   out.noise = sigma_from_variance(0.5 * s_minus, nu);
   const double var_r = s_plus - 0.25 * s_minus;
@@ -722,7 +780,9 @@ RepeatedScanResult repeated_scan_noise(std::span<const Point2> scan, std::span<c
 std::string noise_section_json(const NoiseCharacterization& c,
                                std::optional<double> fallback_scanning_sigma_mm,
                                std::optional<double> fallback_touch_sigma_mm) {
-  return noise_section(c, fallback_scanning_sigma_mm, fallback_touch_sigma_mm).dump(2);
+  const nlohmann::json sec = noise_section(c, fallback_scanning_sigma_mm, fallback_touch_sigma_mm);
+  internal::require_finite_numbers(sec, inputs_text(c), "noise");
+  return sec.dump(2);
 }
 
 std::optional<std::string> roughness_section_json(const NoiseCharacterization& c) {
@@ -769,6 +829,7 @@ std::string noise_characterization_json(const NoiseCharacterization& c,
                   {"center_mm", {c.touch->center_mm.x, c.touch->center_mm.y}},
                   {"radius_mm", c.touch->radius_mm}};
   out["characterization"] = d;
+  internal::require_finite_numbers(out, inputs_text(c));
   return out.dump(2) + "\n";
 }
 

@@ -224,12 +224,12 @@ struct SmallPlan {
 };
 
 TEST(ConsistencyFalseRefusals, HolePlateCalibrationsAreRefusedAtTheNominalRate) {
-  // 600 simulated correct hole-plate calibrations (truth, plate calibration error and noise
+  // 1000 simulated correct hole-plate calibrations (truth, plate calibration error and noise
   // drawn per seed; exact error chain simulated, first-order model fitted).
   const SmallPlan s;
   const auto t0 = std::chrono::steady_clock::now();
   Rates rates;
-  for (int seed = 1; seed <= 600; ++seed) {
+  for (int seed = 1; seed <= 1000; ++seed) {
     em::SeededRandomSource rng(static_cast<std::uint64_t>(seed));
     const em::KinematicErrors truth = s.model.draw(rng);
     const auto data = ch::simulate_hole_plate_measurements(s.model, truth, s.plate, s.plan,

@@ -160,8 +160,7 @@ void add_characterize_noise_command(CLI::App& characterize, int* exit_code) {
       cmd->add_option("--touch", opts->touch, "touch-trigger points on the same artefact");
   cmd->add_option("--cutoff-upr", opts->cutoff_upr,
                   "Gaussian low-pass cut-off separating systematic from random (UPR)")
-      ->default_val(50.0)
-      ->check(CLI::PositiveNumber);
+      ->default_val(50.0);
   cmd->add_option("--phase-deg", opts->phase_deg,
                   "machine angle (about the profile centre, from +X) of the reference's 0 "
                   "degrees; default: estimated from the scan");
@@ -177,9 +176,20 @@ void add_characterize_noise_command(CLI::App& characterize, int* exit_code) {
       *exit_code = kUsage;
       return;
     }
-    if (!std::isfinite(opts->cutoff_upr) || (opts->phase_deg && !std::isfinite(*opts->phase_deg))) {
-      std::cerr << "vcmm characterize noise: error: --cutoff-upr and --phase-deg must be "
-                   "finite numbers\n";
+    // Physical ranges: roundness cut-offs are 15–1500 UPR (ISO 12181-2); below 1 UPR the
+    // filter keeps nothing but the circle, above 1e5 no scan resolves it. An angle is given
+    // within one turn either way.
+    if (!(opts->cutoff_upr >= 1.0 && opts->cutoff_upr <= 1e5)) {
+      std::cerr << "vcmm characterize noise: error: --cutoff-upr must be a cut-off in UPR in "
+                   "[1, 100000] (and at most half the scan's points); got "
+                << opts->cutoff_upr << " UPR\n";
+      *exit_code = kUsage;
+      return;
+    }
+    if (opts->phase_deg && !(std::abs(*opts->phase_deg) <= 360.0)) {
+      std::cerr << "vcmm characterize noise: error: --phase-deg must be an angle in degrees in "
+                   "[-360, 360]; got "
+                << *opts->phase_deg << " deg\n";
       *exit_code = kUsage;
       return;
     }

@@ -630,7 +630,8 @@ void check_gross_errors(const Layout& lay, std::span<const HolePlatePlacement> p
        "', with " + files + "): the measured centres do not fit one rigid position of the plate: "
        "RMS " + num(worst_rms) + " mm, largest " + num(worst) + " mm at " + at +
        "; a CMM's kinematic errors are below " + num(kGrossErrorMm) +
-       " mm — a blunder in that centre, a wrong '# setup:' label or a wrong stylus offset");
+       " mm — a blunder in that centre (or in the plate's calibrated centre of that hole), a "
+       "wrong '# setup:' label or a wrong stylus offset");
 }
 
 void validate_options(const HolePlateFitOptions& o) {

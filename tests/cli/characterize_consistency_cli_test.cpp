@@ -283,4 +283,17 @@ TEST(CliCharacterizeConsistency, NoiseHugeReferenceDeviationIsRefusedNamingTheLi
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(CliCharacterizeConsistency, NoiseOptionsOutOfRangeExit2) {
+  const fs::path out = fresh("cc_never.json");
+  const std::string base = "characterize noise --reference " + q(kNoise + "reference_171mm.csv") +
+                           " --scan " + q(kNoise + "scan_a.csv");
+  for (const char* opt : {"--cutoff-upr 1e300", "--cutoff-upr 1e-300", "--phase-deg 1e300"}) {
+    const CliRun r = run(base + " " + opt + " -o " + q(out));
+    EXPECT_EQ(r.exit_code, 2) << opt << ": " << r.err;
+    const std::string name = std::string(opt).substr(0, std::string(opt).find(' '));
+    EXPECT_NE(r.err.find(name + " must be"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace

@@ -162,7 +162,14 @@ std::string ConsistencyTest::summary() const {
 }
 
 Eigen::VectorXd leverages(const Eigen::MatrixXd& j) {
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(j);
+  // The hat matrix does not depend on the column scale; unit columns keep the rank decision of
+  // the pivoted QR independent of units (mm against rad columns differ by ~1e3 and more).
+  Eigen::MatrixXd scaled = j;
+  for (Eigen::Index c = 0; c < scaled.cols(); ++c) {
+    const double norm = scaled.col(c).norm();
+    if (norm > 0.0) scaled.col(c) /= norm;
+  }
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
   const Eigen::Index rank = qr.rank();
   const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(j.rows(), rank);
   return q.rowwise().squaredNorm();

@@ -1,6 +1,7 @@
 // `vcmm characterize noise --reference PROFILE.csv [--scan S.csv [--scan-repeat S2.csv]]
 //                          [--touch T.csv] [--cutoff-upr 50] [--phase-deg P]
-//                          [--no-scan-systematics] [--model MODEL.json] -o noise.json`
+//                          [--no-scan-systematics] [--model MODEL.json]
+//                          [--accept-inconsistent] -o noise.json`
 // Noise σ by probing mode (and roughness from a repeated scan) from CMM profiles of a
 // calibrated artefact and its reference profile: writes the model's "noise" (and "roughness")
 // sections with a diagnostics block (characterization/noise.h, docs/characterization.md
@@ -37,6 +38,7 @@ struct NoiseOptions {
   std::optional<double> phase_deg;
   bool no_scan_systematics = false;
   std::string model;
+  bool accept_inconsistent = false;
   std::string output;
 };
 
@@ -113,8 +115,32 @@ int run_noise(const NoiseOptions& o) {
       c.touch = ch::touch_trigger_noise(read_profile(o.touch, em::ProbingMode::touch_trigger),
                                         reference, phase, systematics);
     }
-    write_file_atomically(o.output,
-                          ch::noise_characterization_json(c, fallback_scan, fallback_touch));
+    // Outliers in any data set refuse the calibration (or are recorded with
+    // --accept-inconsistent), naming the file and the point.
+    std::vector<std::pair<std::string, const ch::ConsistencyTest*>> tests;
+    if (c.scan) tests.emplace_back("--scan " + o.scan, &c.scan->consistency);
+    if (c.repeated) {
+      tests.emplace_back("--scan " + o.scan, &c.repeated->first.consistency);
+      tests.emplace_back("the difference of --scan " + o.scan + " and --scan-repeat " + o.scan_repeat,
+                         &c.repeated->difference_consistency);
+    }
+    if (c.touch) tests.emplace_back("--touch " + o.touch, &c.touch->consistency);
+    bool inconsistent = false;
+    for (const auto& [what, t] : tests) {
+      if (t->passed()) continue;
+      inconsistent = true;
+      std::cerr << kName << ": " << (o.accept_inconsistent ? "warning" : "error") << ": " << what
+                << ": " << t->summary() << "\n";
+    }
+    if (inconsistent && !o.accept_inconsistent) {
+      std::cerr << kName << ": error: a point far outside the noise of the others (dirt, a probe "
+                   "bounce, a wrong file) would become noise in the model; check the named point; "
+                   "--accept-inconsistent writes the result anyway and records this; nothing "
+                   "written\n";
+      return kInvalidInput;
+    }
+    write_file_atomically(o.output, ch::noise_characterization_json(c, fallback_scan, fallback_touch,
+                                                                    o.accept_inconsistent));
     auto um = [](double mm) { return mm * 1e3; };
     std::cout << kName << ":";
     if (c.repeated)
@@ -169,6 +195,9 @@ void add_characterize_noise_command(CLI::App& characterize, int* exit_code) {
                 "points (then the touch sigma includes the CMM's systematic errors)");
   cmd->add_option("--model", opts->model,
                   "current digital model: supplies the sigma of a mode without data");
+  cmd->add_flag("--accept-inconsistent", opts->accept_inconsistent,
+                "write the result even when a data set has an outlier (studentized, 1 % "
+                "overall); the verdict is recorded in the output");
   cmd->add_option("-o,--output", opts->output, "output JSON (written atomically)")->required();
   cmd->callback([opts, exit_code, scan, touch] {
     if (scan->count() == 0 && touch->count() == 0) {

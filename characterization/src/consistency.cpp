@@ -138,7 +138,7 @@ std::string ConsistencyTest::summary() const {
       s += " < " + num(levels.chi_squared) + ": the residuals are inconsistent with the stated "
            "uncertainties";
   } else {
-    s = "chi2 not tested (sigma estimated from the residuals; state it to test it)";
+    s = "chi2 not tested (sigma estimated from these residuals)";
   }
   if (tested == 0) return s + "; outliers not tested (no redundancy)";
   if (largest)

@@ -14,6 +14,7 @@
 
 #include "vcmm/characterization/consistency.h"
 #include "vcmm/characterization/hole_plate.h"
+#include "vcmm/characterization/noise.h"
 #include "vcmm/characterization/probe_sphere.h"
 #include "vcmm/errormodel/errors.h"
 #include "vcmm/errormodel/random_source.h"
@@ -246,7 +247,76 @@ TEST(ConsistencyFalseRefusals, HolePlateCalibrationsAreRefusedAtTheNominalRate) 
   // Time is printed, not asserted: 4 ms a fit alone, up to ~7 ms on the shared 2-core machine.
 }
 
+// A ring of radius 85.5 mm without form (the reference: 360 zeros), n equiangular points from
+// angle0 with radial noise σ.
+std::vector<vcmm::geometry::Point2> noisy_ring(std::size_t n, double angle0, double sigma,
+                                               em::RandomSource& rng) {
+  std::vector<double> z(n);
+  rng.fill_standard_normal(z);
+  std::vector<vcmm::geometry::Point2> p(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = angle0 + 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
+    const double r = 85.5 + sigma * z[i];
+    p[i] = {600.0 + r * std::cos(t), 500.0 + r * std::sin(t)};
+  }
+  return p;
+}
+
+ch::ReferenceProfile flat_reference() {
+  ch::ReferenceProfile ref;
+  for (int j = 0; j < 360; ++j) {
+    ref.angle_rad.push_back(2.0 * std::numbers::pi * j / 360.0);
+    ref.deviation_mm.push_back(0.0);
+  }
+  return ref;
+}
+
+TEST(ConsistencyFalseRefusals, NoiseDataSetsAreRefusedAtTheNominalRate) {
+  // 1000 pure-noise scans (360 points, f_c = 50) and 1000 sets of 16 touch points, σ = 0.5 µm:
+  // each outlier test at kNoiseOutlierLevel = 1/3 %; tolerance 4 binomial standard errors.
+  const ch::ReferenceProfile ref = flat_reference();
+  ch::ScanNoiseOptions options;
+  options.phase_rad = 0.0;
+  const auto t0 = std::chrono::steady_clock::now();
+  Rates scans, touches;
+  for (int seed = 1; seed <= 1000; ++seed) {
+    em::SeededRandomSource rng(static_cast<std::uint64_t>(seed) + 90000u);
+    scans.add(ch::scanning_noise(noisy_ring(360, 0.01, 0.5e-3, rng), ref, options).consistency);
+    touches.add(ch::touch_trigger_noise(noisy_ring(16, 0.3, 0.5e-3, rng), ref, 0.0).consistency);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  scans.print("noise scans", seconds);
+  touches.print("noise touch", seconds);
+  EXPECT_NEAR(scans.rate(scans.refused), ch::kNoiseOutlierLevel,
+              binomial_tolerance(ch::kNoiseOutlierLevel, scans.trials));
+  EXPECT_NEAR(touches.rate(touches.refused), ch::kNoiseOutlierLevel,
+              binomial_tolerance(ch::kNoiseOutlierLevel, touches.trials));
+}
+
 // ---- blunders ----------------------------------------------------------------------------
+
+TEST(ConsistencyBlunders, NoiseSpikeIsNamed) {
+  em::SeededRandomSource rng(5);
+  const ch::ReferenceProfile ref = flat_reference();
+  ch::ScanNoiseOptions options;
+  options.phase_rad = 0.0;
+  auto scan = noisy_ring(720, 0.01, 0.5e-3, rng);
+  ASSERT_TRUE(ch::scanning_noise(scan, ref, options).consistency.passed());
+  // 5 µm of dirt at point 101 (10 σ): named; it would have raised σ̂ by ~4 %.
+  const double r = std::hypot(scan[100].x - 600.0, scan[100].y - 500.0);
+  scan[100] = {600.0 + (scan[100].x - 600.0) * (r + 5e-3) / r, 500.0 + (scan[100].y - 500.0) * (r + 5e-3) / r};
+  const auto s = ch::scanning_noise(scan, ref, options);
+  ASSERT_FALSE(s.consistency.passed());
+  EXPECT_EQ(s.consistency.outliers.at(0).where.rfind("point 101 (", 0), 0u) << s.consistency.summary();
+  // 16 touch points, one 4 µm off (8 σ).
+  auto touch = noisy_ring(16, 0.3, 0.5e-3, rng);
+  ASSERT_TRUE(ch::touch_trigger_noise(touch, ref, 0.0).consistency.passed());
+  touch[9].x += 4e-3 * std::cos(0.3 + 2.0 * std::numbers::pi * 9 / 16);
+  touch[9].y += 4e-3 * std::sin(0.3 + 2.0 * std::numbers::pi * 9 / 16);
+  const auto t = ch::touch_trigger_noise(touch, ref, 0.0);
+  ASSERT_FALSE(t.consistency.passed());
+  EXPECT_EQ(t.consistency.outliers.at(0).where.rfind("point 10 (", 0), 0u) << t.consistency.summary();
+}
 
 TEST(ConsistencyBlunders, HolePlateBlundersAreNamed) {
   const SmallPlan s;

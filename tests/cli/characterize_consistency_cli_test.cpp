@@ -6,6 +6,7 @@
 // report χ²/ν, the Birge ratio and p; --accept-inconsistent writes and records the verdict.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -281,6 +282,55 @@ TEST(CliCharacterizeConsistency, NoiseHugeReferenceDeviationIsRefusedNamingTheLi
   EXPECT_NE(r.err.find(bad.string() + ":6"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("um"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(CliCharacterizeConsistency, NoiseSpikeInAScanIsNamed) {
+  const fs::path out = fresh("cc_noise.json");
+  // Point 101 of scan_a.csv moved 10 µm outward (about 14 σ) from the ring's centre.
+  std::string text = slurp(kNoise + "scan_a.csv");
+  std::vector<std::string> lines;
+  for (std::size_t a = 0, b; a < text.size(); a = b + 1) {
+    b = text.find('\n', a);
+    if (b == std::string::npos) b = text.size();
+    lines.push_back(text.substr(a, b - a));
+  }
+  std::size_t first = 0;
+  while (lines[first].empty() || lines[first][0] == '#' || lines[first][0] == 'x') ++first;
+  double cx = 0.0, cy = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = first; i < lines.size(); ++i) {
+    if (lines[i].empty()) continue;
+    cx += std::stod(lines[i]);
+    cy += std::stod(lines[i].substr(lines[i].find(',') + 1));
+    ++n;
+  }
+  cx /= static_cast<double>(n);
+  cy /= static_cast<double>(n);
+  std::string& row = lines[first + 100];
+  const auto c1 = row.find(','), c2 = row.find(',', c1 + 1);
+  const double x = std::stod(row), y = std::stod(row.substr(c1 + 1));
+  const double r = std::hypot(x - cx, y - cy), k = (r + 0.01) / r;
+  char buf[80];
+  std::snprintf(buf, sizeof buf, "%.7f,%.7f", cx + (x - cx) * k, cy + (y - cy) * k);
+  row = buf + row.substr(c2);
+  std::string joined;
+  for (const std::string& l : lines) {
+    joined += l;
+    joined += '\n';
+  }
+  const fs::path dirty = write("cc_scan_dirty.csv", joined);
+  const std::string args = "characterize noise --reference " + q(kNoise + "reference_171mm.csv") +
+                           " --scan " + q(dirty) + " --scan-repeat " + q(kNoise + "scan_b.csv");
+  CliRun run1 = run(args + " -o " + q(out));
+  EXPECT_EQ(run1.exit_code, 3) << run1.err;
+  EXPECT_NE(run1.err.find("--scan " + dirty.string() + ": "), std::string::npos) << run1.err;
+  EXPECT_NE(run1.err.find("point 101 ("), std::string::npos) << run1.err;
+  EXPECT_FALSE(fs::exists(out));
+  run1 = run(args + " --accept-inconsistent -o " + q(out));
+  ASSERT_EQ(run1.exit_code, 0) << run1.err;
+  const auto d = nlohmann::json::parse(slurp(out))["characterization"];
+  EXPECT_FALSE(d["scan"]["consistency"]["passed"].get<bool>());
+  EXPECT_TRUE(d["scan"]["consistency"]["accepted_although_inconsistent"].get<bool>());
 }
 
 TEST(CliCharacterizeConsistency, NoiseOptionsOutOfRangeExit2) {

@@ -1,6 +1,8 @@
 #include "vcmm/validation/ring_uncertainty_report.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -16,6 +18,7 @@ constexpr double kUmPerMm = 1000.0;
 struct MeasurandView {
   const char* name;
   const char* unit;
+  const char* prose_unit;  // the unit in sentences ("µm" where the key says "um")
   double scale;  // mm → unit
   const uncertainty::MeasurandSummary* summary;
   const uncertainty::BiasCorrection* correction;  // the reported treatment's
@@ -24,7 +27,8 @@ struct MeasurandView {
   double estimate;
 };
 
-nlohmann::json correction_json(const uncertainty::BiasCorrection& c, double scale) {
+nlohmann::json correction_json(const uncertainty::BiasCorrection& c, double scale,
+                               std::string_view prose_unit) {
   nlohmann::json j;
   j["bias"] = c.bias * scale;
   j["bias_standard_error"] = c.bias_standard_error * scale;
@@ -35,7 +39,7 @@ nlohmann::json correction_json(const uncertainty::BiasCorrection& c, double scal
   j["correction_applied"] = c.applied;
   j["correction_refused"] = c.refused;
   j["corrected_clamped_at_zero"] = c.clamped;
-  j["note"] = c.note;
+  j["note"] = uncertainty::describe(c, scale, prose_unit);
   return j;
 }
 
@@ -54,16 +58,25 @@ nlohmann::json measurand_json(const MeasurandView& v) {
       {"shortest_low", s.shortest.low * v.scale},
       {"shortest_high", s.shortest.high * v.scale}};
   j["bias_treatment"] = std::string(v.treatment);
-  j.update(correction_json(c, v.scale));
-  j["paper"] = correction_json(*v.paper, v.scale);
+  j.update(correction_json(c, v.scale, v.prose_unit));
+  j["paper"] = correction_json(*v.paper, v.scale, v.prose_unit);
   return j;
 }
 
 std::array<MeasurandView, 2> views(const RingUncertaintyResult& r) {
-  return {{{"diameter", "mm", 1.0, &r.monte_carlo.summaries.at(diameter), &r.diameter,
+  return {{{"diameter", "mm", "mm", 1.0, &r.monte_carlo.summaries.at(diameter), &r.diameter,
             &r.diameter, "paper", r.estimate.diameter_mm},
-           {"roundness", "um", kUmPerMm, &r.monte_carlo.summaries.at(roundness), &r.roundness,
+           {"roundness", "um", "µm", kUmPerMm, &r.monte_carlo.summaries.at(roundness), &r.roundness,
             &r.roundness_paper, to_string(r.roundness_treatment), r.estimate.roundness_mm}}};
+}
+
+/// Decimal places of a reported value in GUM style (JCGM 100 7.2.6): the standard
+/// uncertainty with two significant digits, every value of the measurand to the same place.
+/// 4 when u is 0 or not finite; at most 9.
+int gum_decimals(double u) {
+  if (!(u > 0.0) || !std::isfinite(u)) return 4;
+  const int d = 1 - static_cast<int>(std::floor(std::log10(u)));
+  return std::clamp(d, 0, 9);
 }
 
 }  // namespace
@@ -146,7 +159,7 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
   for (const MeasurandView& v : views(result)) {
     const auto& s = *v.summary;
     const auto& c = *v.correction;
-    const int digits = v.scale == 1.0 ? 6 : 4;
+    const int digits = gum_decimals(s.standard_uncertainty * v.scale);
     os << "\n" << v.name << " (" << v.unit << ")\n";
     auto row = [&](const char* label, double value) {
       std::snprintf(line, sizeof line, "  %-28s %.*f\n", label, digits, value * v.scale);
@@ -155,16 +168,21 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
     row("estimate from data", v.estimate);
     row("Monte Carlo mean", s.mean);
     row("standard uncertainty u", s.standard_uncertainty);
-    std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n",
-                  (std::to_string(static_cast<int>(p * 100.0 + 0.5)) +
-                   " % interval (symmetric)").c_str(),
-                  digits, s.probabilistically_symmetric.low * v.scale, digits,
-                  s.probabilistically_symmetric.high * v.scale);
-    os << line;
+    row("expanded U (k = 2)", 2.0 * s.standard_uncertainty);
+    const std::string percent = std::to_string(static_cast<int>(p * 100.0 + 0.5)) + " % interval";
+    for (const auto& [kind, ci] : {std::pair{" (symmetric)", &s.probabilistically_symmetric},
+                                   std::pair{" (shortest)", &s.shortest}}) {
+      std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n", (percent + kind).c_str(), digits,
+                    ci->low * v.scale, digits, ci->high * v.scale);
+      os << line;
+    }
     const auto treatment_rows = [&](const uncertainty::BiasCorrection& t, bool surrogate) {
+      // The bias to the place of its own Monte Carlo standard error (at least the
+      // measurand's): −0.0000040 (MC standard error 0.0000066), never "-0.00000".
+      const int bias_digits = std::max(digits, gum_decimals(t.bias_standard_error * v.scale));
       std::snprintf(line, sizeof line, "  %-28s %.*f (MC standard error %.*f)\n",
-                    surrogate ? "bias (at the surrogate)" : "bias (mean - estimate)", digits,
-                    t.bias * v.scale, digits, t.bias_standard_error * v.scale);
+                    surrogate ? "bias (at the surrogate)" : "bias (mean - estimate)",
+                    bias_digits, t.bias * v.scale, bias_digits, t.bias_standard_error * v.scale);
       os << line;
       if (surrogate) row("u of the bias estimate", t.bias_uncertainty);
       row(t.applied ? "corrected estimate" : "reported (uncorrected)", t.corrected);
@@ -181,7 +199,6 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
       os << "  -- the seed study's treatment (bias of the Monte Carlo on the measured data)\n";
     }
     treatment_rows(*v.paper, false);
-    // (The engine's note carries the numbers in the library's unit, mm: the JSON keeps it.)
     os << "  correction: "
        << (v.paper->applied
                ? "applied (the interval is the Monte Carlo interval reflected about the "

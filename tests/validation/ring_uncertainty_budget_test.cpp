@@ -13,16 +13,14 @@
 
 #include "vcmm/errormodel/ring_gauge.h"
 #include "vcmm/validation/ring_experiment.h"
+#include "support/perfect_model.h"
 
 namespace vcmm::validation {
 namespace {
 
 namespace em = vcmm::errormodel;
 
-em::DigitalModel perfect_model() {
-  const std::array<em::AxisRange, 3> ranges = {{{0, 1200}, {0, 1000}, {0, 800}}};
-  return em::DigitalModel(em::KinematicModel::zero(em::KinematicChain::moving_bridge(), ranges));
-}
+using test::perfect_model;
 
 /// 180 scanning points of the seed study's ring form, at 20 °C unless said.
 em::Measurement ring(double temperature_c = 20.0) {

@@ -231,7 +231,7 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
       ->default_val(va::ShrinkageOptions{}.surrogate_trials);
   auto* budget = cmd->add_flag("--budget", opts->budget,
                 "also the uncertainty budget: each error source alone on the same random numbers "
-                "(one more run per source; docs/uncertainty.md)");
+                "(one more run per source; docs/validation.md)");
   cmd->add_option("--budget-trials", opts->budget_trials,
                   "trials of each budget run (default and at most: the main run's)")
       ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}))

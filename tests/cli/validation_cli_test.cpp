@@ -83,7 +83,7 @@ TEST(CliUncertainty, SameSeedSameNumbersForOneAndTwoThreads) {
   EXPECT_EQ(x.rfind("diameter_mm,roundness_um\n", 0), 0u);
 }
 
-// --budget: the "budget" object (docs/uncertainty.md), five sources in stage order, the
+// --budget: the "budget" object (docs/formats.md), five sources in stage order, the
 // quadrature sum beside the full u; the table carries it too; the same numbers for one and two
 // threads; --budget-trials needs --budget.
 TEST(CliUncertainty, BudgetPerErrorSource) {

@@ -1,5 +1,5 @@
 // validation/src/ring_uncertainty_budget.cpp — one-at-a-time runs on common random numbers
-// (the method and its limits: the header and docs/uncertainty.md, "Uncertainty budget").
+// (the method and its limits: the header and docs/validation.md, "Uncertainty budget").
 #include "vcmm/validation/ring_uncertainty_budget.h"
 
 #include <algorithm>

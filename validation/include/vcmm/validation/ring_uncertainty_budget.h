@@ -1,6 +1,6 @@
 // vcmm/validation/ring_uncertainty_budget.h — the uncertainty budget of one ring measurement:
 // per error source, the standard uncertainty of the diameter and of the roundness that source
-// produces alone (docs/uncertainty.md, "Uncertainty budget").
+// produces alone (docs/validation.md, "Uncertainty budget").
 //
 // Method (one at a time, common random numbers). The full virtual experiment of
 // ring_experiment.h draws every source from the trial's stream RandomStream(seed, t) in a

@@ -83,6 +83,50 @@ TEST(CliUncertainty, SameSeedSameNumbersForOneAndTwoThreads) {
   EXPECT_EQ(x.rfind("diameter_mm,roundness_um\n", 0), 0u);
 }
 
+// --budget: the "budget" object (docs/formats.md), five sources in stage order, the
+// quadrature sum beside the full u; the table carries it too; the same numbers for one and two
+// threads; --budget-trials needs --budget.
+TEST(CliUncertainty, BudgetPerErrorSource) {
+  const std::string args = "--trials 200 --pilot-trials 100 --budget --budget-trials 100 --json ";
+  const CliRun a = run(uncertainty_args(args + "--threads 1"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const auto j = nlohmann::json::parse(a.out);
+  const auto& b = j["budget"];
+  EXPECT_EQ(b["trials"], 100);
+  ASSERT_EQ(b["sources"].size(), 5u);
+  const char* names[] = {"roughness", "temperature", "kinematic", "probe", "noise"};
+  double shares = 0.0;
+  for (std::size_t i = 0; i < 5; ++i) {
+    const auto& s = b["sources"][i];
+    EXPECT_EQ(s["source"], names[i]);
+    EXPECT_GT(s["diameter_u_mm"].get<double>(), 0.0) << names[i];
+    EXPECT_GE(s["roundness_u_um"].get<double>(), 0.0) << names[i];
+    shares += s["share_of_variance"]["diameter"].get<double>();
+  }
+  EXPECT_NEAR(shares, 1.0, 1e-12);
+  const auto& q = b["quadrature_sum"];
+  for (const char* k : {"diameter_u_mm", "roundness_u_um", "full_diameter_u_mm",
+                        "full_roundness_u_um", "diameter_ratio", "roundness_ratio"})
+    EXPECT_TRUE(q[k].is_number()) << k;
+  EXPECT_NE(b["note"].get<std::string>().find("common random numbers"), std::string::npos);
+  const CliRun two = run(uncertainty_args(args + "--threads 2"));
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  auto j2 = nlohmann::json::parse(two.out);
+  j2["budget"].erase("wall_seconds");
+  auto j1 = j;
+  j1["budget"].erase("wall_seconds");
+  EXPECT_EQ(j1["budget"], j2["budget"]);
+  EXPECT_FALSE(nlohmann::json::parse(run(uncertainty_args("--trials 200 --json")).out)
+                   .contains("budget"));  // off by default
+  const CliRun t = run(uncertainty_args("--trials 200 --pilot-trials 100 --budget"));
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("uncertainty budget"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("sqrt(sum u_i^2)"), std::string::npos) << t.out;
+  const CliRun bad = run(uncertainty_args("--trials 200 --budget-trials 100"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--budget"), std::string::npos) << bad.err;
+}
+
 TEST(CliUncertainty, BadOptionsAndInputs) {
   EXPECT_EQ(run(uncertainty_args("--trials 100 --adaptive 0.01")).exit_code, 2);
   EXPECT_EQ(run(uncertainty_args("--reference XY")).exit_code, 2);

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -79,6 +80,140 @@ int gum_decimals(double u) {
   return std::clamp(d, 0, 9);
 }
 
+/// Whether the quadrature sum agrees with the full u to Monte Carlo precision: the sample
+/// covariances of independent sources make the ratio differ from 1 by at most ~1/√(2M) (one
+/// standard error of u, relative); four of them (ring_uncertainty_budget.h, docs).
+bool adds_in_quadrature(double ratio, std::uint64_t trials) {
+  return std::abs(ratio - 1.0) <= 4.0 / std::sqrt(2.0 * static_cast<double>(trials - 1));
+}
+
+double ratio_of(double quadrature, double full) {
+  return full > 0.0 ? quadrature / full : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string budget_note(const UncertaintyBudget& b) {
+  std::string note =
+      "Each source alone (the others at their estimates), on the very random numbers it has in "
+      "the full run (common random numbers), " + std::to_string(b.trials) +
+      " trials a source. share_of_variance = u_i^2 / sum of u_j^2.";
+  const auto sentence = [&](const char* name, double ratio) {
+    std::string out = std::string(" ") + name + ": quadrature sum / full u = ";
+    if (!std::isfinite(ratio)) return out + "undefined (full u = 0).";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", ratio);
+    out += text;
+    if (adds_in_quadrature(ratio, b.trials))
+      return out + ", the u_i add in quadrature to Monte Carlo precision.";
+    return out + ", the u_i do NOT add in quadrature.";
+  };
+  note += sentence("Diameter", ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm));
+  note += sentence("Roundness", ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm));
+  note +=
+      " RONt is not linear in the errors (a peak-to-valley of summed deviations is not a sum; "
+      "each source alone biases it upward on its own): its u_i need not add in quadrature, and "
+      "its shares rank the sources rather than split u^2.";
+  return note;
+}
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json budget_json(const UncertaintyBudget& b) {
+  nlohmann::json sources = nlohmann::json::array();
+  for (const SourceContribution& c : b.sources) {
+    sources.push_back({{"source", std::string(errormodel::to_string(c.source))},
+                       {"evaluated", c.evaluated},
+                       {"diameter_u_mm", c.diameter_u_mm},
+                       {"roundness_u_um", c.roundness_u_mm * kUmPerMm},
+                       {"share_of_variance",
+                        {{"diameter", c.diameter_share}, {"roundness", c.roundness_share}}}});
+  }
+  return {{"method", "one source at a time, common random numbers"},
+          {"trials", b.trials},
+          {"wall_seconds", b.wall_seconds},
+          {"sources", std::move(sources)},
+          {"quadrature_sum",
+           {{"diameter_u_mm", b.diameter_quadrature_mm},
+            {"roundness_u_um", b.roundness_quadrature_mm * kUmPerMm},
+            {"full_diameter_u_mm", b.diameter_full_u_mm},
+            {"full_roundness_u_um", b.roundness_full_u_mm * kUmPerMm},
+            {"diameter_ratio",
+             number_or_null(ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm))},
+            {"roundness_ratio",
+             number_or_null(ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm))}}},
+          {"note", budget_note(b)}};
+}
+
+/// A share as a bar of `width` characters and a percentage: "######     54 %".
+std::string share_bar(double share) {
+  constexpr int width = 10;
+  const int n = static_cast<int>(std::lround(share * width));
+  char pct[16];
+  std::snprintf(pct, sizeof pct, " %3.0f %%", share * 100.0);
+  return std::string(static_cast<std::size_t>(n), '#') +
+         std::string(static_cast<std::size_t>(width - n), ' ') + pct;
+}
+
+/// `text` broken into lines of at most `width` characters at spaces, each indented by two.
+std::string wrapped(const std::string& text, std::size_t width) {
+  std::string out, line;
+  std::istringstream words(text);
+  std::string word;
+  while (words >> word) {
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      out += "  " + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  if (!line.empty()) out += "  " + line + "\n";
+  return out;
+}
+
+void budget_text(const UncertaintyBudget& b, std::ostringstream& os) {
+  char line[256];
+  os << "\nuncertainty budget: each source alone, common random numbers, " << b.trials
+     << " trials a source\n";
+  std::snprintf(line, sizeof line, "  %-16s %12s  %-16s %12s  %s\n", "source",
+                "u diam. (mm)", "share", "u RONt (um)", "share");
+  os << line;
+  // Every u to two significant digits of its own: the budget compares sizes.
+  const auto u_text = [](double u) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.*f", gum_decimals(u), u);
+    return std::string(t);
+  };
+  for (const SourceContribution& c : b.sources) {
+    const std::string name(to_string(c.source));
+    if (!c.evaluated) {
+      std::snprintf(line, sizeof line, "  %-16s %12s\n", name.c_str(), "(switched off)");
+    } else {
+      std::snprintf(line, sizeof line, "  %-16s %12s  %-16s %12s  %s\n", name.c_str(),
+                    u_text(c.diameter_u_mm).c_str(), share_bar(c.diameter_share).c_str(),
+                    u_text(c.roundness_u_mm * kUmPerMm).c_str(),
+                    share_bar(c.roundness_share).c_str());
+    }
+    os << line;
+  }
+  const auto row = [&](const char* label, const std::string& d, const std::string& r) {
+    std::snprintf(line, sizeof line, "  %-16s %12s  %16s %12s\n", label, d.c_str(), "",
+                  r.c_str());
+    os << line;
+  };
+  row("sqrt(sum u_i^2)", u_text(b.diameter_quadrature_mm),
+      u_text(b.roundness_quadrature_mm * kUmPerMm));
+  row("full run u", u_text(b.diameter_full_u_mm), u_text(b.roundness_full_u_mm * kUmPerMm));
+  const auto ratio_text = [](double r) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.3f", r);
+    return std::isfinite(r) ? std::string(t) : std::string("-");
+  };
+  row("ratio", ratio_text(ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm)),
+      ratio_text(ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm)));
+  os << wrapped(budget_note(b), 94);
+}
+
 }  // namespace
 
 std::string ring_uncertainty_json(const RingUncertaintyResult& result,
@@ -126,6 +261,7 @@ std::string ring_uncertainty_json(const RingUncertaintyResult& result,
         {"u_of_surrogate_estimate", z.standard_uncertainty * kUmPerMm}};
   }
   if (mc.correlation.size() == 4) j["correlation_diameter_roundness"] = mc.correlation[1];
+  if (result.budget) j["budget"] = budget_json(*result.budget);
   return j.dump(2) + "\n";
 }
 
@@ -207,6 +343,7 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
                  "reported with u enlarged by |bias| and the interval widened by |bias|")
        << "\n";
   }
+  if (result.budget) budget_text(*result.budget, os);
   return os.str();
 }
 

@@ -1,8 +1,11 @@
 // certificate.cpp — the independent exact checks of reference-circle certificates.
 //
-// Shares no code with the fitters (it includes no geometry/src/internal header): its own
-// rational arithmetic (CGAL::Exact_rational, GMP mpq), its own interval filters
-// (CGAL::Interval_nt, exact fallback whenever a sign is uncertain), its own predicates.
+// Shares no code with the fitters (the only internal headers it includes, verify_distance.h and
+// verify_inscribed_cover.h, serve verify() alone): its own rational arithmetic
+// (CGAL::Exact_rational, GMP mpq), its own filters — a static floating-point filter with a
+// proven error bound for the per-point distance comparisons (verify_distance.h), interval
+// arithmetic (CGAL::Interval_nt) elsewhere, the exact path whenever a sign is uncertain — and
+// its own predicates.
 // Every decision is exact; no square root is ever taken of a rational — lengths are
 // compared through squares by the identities below.
 //
@@ -116,6 +119,8 @@
 #include <utility>
 #include <vector>
 
+#include "internal/verify_distance.h"
+#include "internal/verify_inscribed_cover.h"
 #include "vcmm/geometry/maximum_inscribed.h"
 #include "vcmm/geometry/minimum_circumscribed.h"
 #include "vcmm/geometry/minimum_zone.h"
@@ -290,11 +295,12 @@ class CentreDistances {
   mpz_t X_, Y_, D_, px_, py_, t_, ref_;
 };
 
-/// A rational circle with its interval enclosure, for filtered distance comparisons.
+/// A rational centre with its enclosures, for filtered distance comparisons.
 struct FilteredCircle {
   QPoint c;
   IA cx;
   IA cy;
+  internal::ApproxCentre approx;  // the static filter's view of c (verify_distance.h)
   /// The exact stage, built on first use (only near-ties need it).
   CentreDistances& exact() const {
     if (!exact_) exact_ = std::make_unique<CentreDistances>(c);
@@ -303,33 +309,73 @@ struct FilteredCircle {
   mutable std::unique_ptr<CentreDistances> exact_;
 };
 
-FilteredCircle filtered(const QPoint& c) { return {c, to_ia(c.x), to_ia(c.y), nullptr}; }
-
-/// sign(|c − p|² − |c − ref|²), t_ia enclosing |c − ref|²: interval first, exact integers
-/// (CentreDistances) when the interval straddles zero.
-int compare_distance2(Point2 p, const FilteredCircle& fc, Point2 ref, const IA& t_ia) {
-  const IA dx = IA(p.x) - fc.cx;
-  const IA dy = IA(p.y) - fc.cy;
-  const IA d = dx * dx + dy * dy - t_ia;
-  if (d.inf() > 0.0) return 1;
-  if (d.sup() < 0.0) return -1;
-  return fc.exact().compare(p, ref);
+FilteredCircle filtered(const QPoint& c) {
+  const IA cx = to_ia(c.x), cy = to_ia(c.y);
+  return {c, cx, cy, internal::approx_centre({cx.inf(), cx.sup()}, {cy.inf(), cy.sup()}),
+          nullptr};
 }
 
-/// max_p |c − p|² (want_max) or min_p |c − p|², exact, with an interval pre-selection.
+/// |c − ref|² for a comparison made many times: the reference point, its static-filter value
+/// and its interval enclosure.
+struct Threshold {
+  Point2 ref;
+  internal::Distance2 approx;
+  IA enclosure;
+};
+
+IA interval_distance2(Point2 p, const FilteredCircle& fc) {
+  const IA dx = IA(p.x) - fc.cx;
+  const IA dy = IA(p.y) - fc.cy;
+  return dx * dx + dy * dy;
+}
+
+Threshold threshold(Point2 ref, const FilteredCircle& fc) {
+  return {ref, internal::distance2(ref, fc.approx), interval_distance2(ref, fc)};
+}
+
+/// sign(|c − p|² − |c − t.ref|²) given p's static-filter value d: three stages — the static
+/// filter (a few flops), intervals (tighter, ~10× the cost: they decide most near-ties of
+/// points co-circular to within rounding), exact integers (CentreDistances) for the rest.
+int compare_distance2(Point2 p, const internal::Distance2& d, const FilteredCircle& fc,
+                      const Threshold& t) {
+  if (const int s = internal::certain_sign(d, t.approx)) return s;
+  const IA diff = interval_distance2(p, fc) - t.enclosure;
+  if (diff.inf() > 0.0) return 1;
+  if (diff.sup() < 0.0) return -1;
+  return fc.exact().compare(p, t.ref);
+}
+
+int compare_distance2(Point2 p, const FilteredCircle& fc, const Threshold& t) {
+  return compare_distance2(p, internal::distance2(p, fc.approx), fc, t);
+}
+
+/// max_p |c − p|² (want_max) or min_p |c − p|², exact, with a filtered pre-selection: the
+/// static filter's bounds, then intervals for the points they leave, then exact comparisons
+/// among the points whose enclosure still reaches the best bound.
 Q extreme_distance2(std::span<const Point2> points, const FilteredCircle& fc, bool want_max) {
-  std::vector<IA> d(points.size());
-  double bound = want_max ? -std::numeric_limits<double>::infinity()
-                          : std::numeric_limits<double>::infinity();
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<internal::Distance2> d(points.size());
+  double bound = want_max ? -inf : inf;
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const IA dx = IA(points[k].x) - fc.cx;
-    const IA dy = IA(points[k].y) - fc.cy;
-    d[k] = dx * dx + dy * dy;
-    bound = want_max ? std::max(bound, d[k].inf()) : std::min(bound, d[k].sup());
+    d[k] = internal::distance2(points[k], fc.approx);
+    bound = want_max ? std::max(bound, d[k].value - d[k].error)
+                     : std::min(bound, d[k].value + d[k].error);
+  }
+  // The bounds are rounded: widen the test by a relative 2⁻³⁰ so no candidate is lost to it.
+  const double slack = std::fabs(bound) * 0x1p-30;
+  std::vector<std::pair<std::size_t, IA>> candidates;
+  double ia_bound = want_max ? -inf : inf;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (want_max ? d[k].value + d[k].error < bound - slack
+                 : d[k].value - d[k].error > bound + slack)
+      continue;
+    const IA v = interval_distance2(points[k], fc);
+    ia_bound = want_max ? std::max(ia_bound, v.inf()) : std::min(ia_bound, v.sup());
+    candidates.emplace_back(k, v);
   }
   std::optional<std::size_t> best;
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    if (want_max ? d[k].sup() < bound : d[k].inf() > bound) continue;
+  for (const auto& [k, v] : candidates) {
+    if (want_max ? v.sup() < ia_bound : v.inf() > ia_bound) continue;
     if (!best) {
       best = k;
       continue;
@@ -618,12 +664,11 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
   {
     const QPoint a = to_q(hull[0]), b = to_q(hull[1]), c = to_q(hull[2]);
     if (auto cc = equidistant_point(a, b, a, c)) {
-      const Q r2 = norm2(a - *cc);
       const FilteredCircle fc = filtered(*cc);
-      const IA r2i = to_ia(r2);
+      const Threshold r2d = threshold(hull[0], fc);
       bool all_on = true;
       for (const Point2& p : pts) {
-        if (compare_distance2(p, fc, hull[0], r2i) != 0) {
+        if (compare_distance2(p, fc, r2d) != 0) {
           all_on = false;
           break;
         }
@@ -701,11 +746,11 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
         if (!strictly_alternate(qo1 - *c, qo2 - *c, qi1 - *c, qi2 - *c)) continue;
         // Final, self-evident check of the narrower zone: every point in its annulus.
         const FilteredCircle fc = filtered(*c);
-        const IA o2i = to_ia(outer2), i2i = to_ia(inner2);
+        const Threshold o2d = threshold(o1, fc), i2d = threshold(ie.a, fc);
         bool contained = true;
         for (std::size_t k = 0; k < pts.size() && contained; ++k)
-          contained = compare_distance2(pts[k], fc, o1, o2i) <= 0 &&
-                      compare_distance2(pts[k], fc, ie.a, i2i) >= 0;
+          contained = compare_distance2(pts[k], fc, o2d) <= 0 &&
+                      compare_distance2(pts[k], fc, i2d) >= 0;
         if (!contained) continue;
         std::ostringstream os;
         os.precision(17);
@@ -732,9 +777,9 @@ Verification verify_zero_width(std::span<const Point2> points, const MinimumZone
   if (!c) return fail(what, "the 3 contacts are collinear");
   const Q r2 = norm2(p0 - *c);
   const FilteredCircle fc = filtered(*c);
-  const IA r2i = to_ia(r2);
+  const Threshold r2d = threshold(points[a[0]], fc);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, points[a[0]], r2i) != 0)
+    if (compare_distance2(points[k], fc, r2d) != 0)
       return fail(what, index_name("point", k) + " is not on the circle of the contacts");
   }
   const double scale = scale_of(*c, r2);
@@ -778,11 +823,13 @@ Verification verify(std::span<const Point2> points, const MinimumZoneCircle& mz)
   if (zone.inner2 >= zone.outer2) return fail(what, "exact r^2 >= R^2: the inner contacts are not inside the outer circle");
   // Containment, exact (filtered).
   const FilteredCircle fc = filtered(*c);
-  const IA o2i = to_ia(zone.outer2), i2i = to_ia(zone.inner2);
+  const Threshold o2d = threshold(points[io1], fc), i2d = threshold(points[ii1], fc);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, points[io1], o2i) > 0)
+    // One static-filter distance for both radii.
+    const internal::Distance2 d = internal::distance2(points[k], fc.approx);
+    if (compare_distance2(points[k], d, fc, o2d) > 0)
       return fail(what, index_name("point", k) + " lies outside the outer circle");
-    if (compare_distance2(points[k], fc, points[ii1], i2i) < 0)
+    if (compare_distance2(points[k], d, fc, i2d) < 0)
       return fail(what, index_name("point", k) + " lies inside the inner circle");
   }
   if (!strictly_alternate(o1 - *c, o2 - *c, i1 - *c, i2 - *c)) {
@@ -871,9 +918,9 @@ Verification verify(std::span<const Point2> points, const MinimumCircumscribedCi
   }
   const Q r2 = norm2(a - c);
   const FilteredCircle fc = filtered(c);
-  const IA r2i = to_ia(r2);
+  const Threshold r2d = threshold(points[idx[0]], fc);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, points[idx[0]], r2i) > 0)
+    if (compare_distance2(points[k], fc, r2d) > 0)
       return fail(what, index_name("point", k) + " lies outside the circle");
   }
   const double u = ulp_of(scale_of(c, r2));
@@ -1004,6 +1051,23 @@ std::optional<std::string> refute_global_inscribed(std::span<const Point2> point
   return std::nullopt;
 }
 
+/// The fast global test of verify_inscribed_cover.h for the MI circle about fc.c through the
+/// contacts t (r2 its squared radius, farthest2 the largest squared distance of a point).
+bool is_covered_by_disks(std::span<const Point2> points, const FilteredCircle& fc,
+                         const std::array<QPoint, 3>& t, const Q& r2, const Q& farthest2) {
+  // γ²: the squared distance from c to the nearest edge line of the contact triangle.
+  std::optional<Q> gamma2;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const QPoint e = t[(k + 1) % 3] - t[k];
+    const Q cr = cross(e, fc.c - t[k]);
+    const Q g = cr * cr / norm2(e);
+    if (!gamma2 || g < *gamma2) gamma2 = g;
+  }
+  const auto enclose = [](const Q& q) { return CGAL::to_interval(q); };
+  return internal::disks_cover_inscribed(
+      points, fc.approx, {enclose(r2), enclose(farthest2), enclose(farthest2 - r2), enclose(*gamma2)});
+}
+
 }  // namespace
 
 Verification verify(std::span<const Point2> points, const MaximumInscribedCircle& mi) {
@@ -1032,9 +1096,9 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
   }
   const Q r2 = norm2(a - c);
   const FilteredCircle fc = filtered(c);
-  const IA r2i = to_ia(r2);
+  const Threshold r2d = threshold(points[idx[0]], fc);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, points[idx[0]], r2i) < 0)
+    if (compare_distance2(points[k], fc, r2d) < 0)
       return fail(what, index_name("point", k) + " lies strictly inside the circle");
   }
   // Centre on an edge (then a diameter) of the contact triangle: a strict local maximum
@@ -1046,7 +1110,7 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
     const int third = orientation(to_q(p0), to_q(p1), to_q(points[idx[(e + 2) % 3]]));
     bool witness = false;
     for (std::size_t k = 0; k < points.size() && !witness; ++k) {
-      if (compare_distance2(points[k], fc, points[idx[0]], r2i) != 0) continue;
+      if (compare_distance2(points[k], fc, r2d) != 0) continue;
       witness = orientation(to_q(p0), to_q(p1), to_q(points[k])) == -third;
     }
     if (!witness) {
@@ -1069,6 +1133,9 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
   if (auto e = check_zero("RONv", mi.ron.ronv, kParameterUlps * u)) return fail(what, *e);
   if (auto e = check_ronq(mi.ron, kParameterUlps * u)) return fail(what, *e);
   if (mi.certificate.optimality != Optimality::global) return Verification{true, {}};
+  // An O(n) sufficient test first (the disks of radius r about the points cover the disk of
+  // radius √farthest2 about c); what it cannot settle, the exhaustion decides.
+  if (is_covered_by_disks(points, fc, {a, b, d}, r2, farthest2)) return Verification{true, {}};
   if (auto e = refute_global_inscribed(points, r2))
     return fail(what, "global optimality claim is false: " + *e);
   return Verification{true, {}};

@@ -25,7 +25,7 @@
 #include <span>
 #include <utility>
 
-#include "internal/verify_distance.h"
+#include "verify_distance.h"
 #include "vcmm/geometry/point.h"
 
 namespace vcmm::geometry::internal {

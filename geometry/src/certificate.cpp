@@ -443,6 +443,8 @@ std::string describe(const Q& v) { return describe(CGAL::to_double(v)); }
 std::optional<std::string> check_centre(Point2 reported, const QPoint& c, double tol) {
   if (!std::isfinite(reported.x) || !std::isfinite(reported.y))
     return "reported centre is not finite";
+  const IA dx = IA(reported.x) - to_ia(c.x), dy = IA(reported.y) - to_ia(c.y);
+  if (CGAL::abs(dx).sup() <= tol && CGAL::abs(dy).sup() <= tol) return std::nullopt;
   const Q t(tol);
   if (CGAL::abs(Q(reported.x) - c.x) > t || CGAL::abs(Q(reported.y) - c.y) > t) {
     return "reported centre (" + describe(reported.x) + ", " + describe(reported.y) +
@@ -456,6 +458,14 @@ std::optional<std::string> check_centre(Point2 reported, const QPoint& c, double
 std::optional<std::string> check_radius(const char* name, double reported, const Q& t,
                                         double tol) {
   if (!std::isfinite(reported)) return std::string("reported ") + name + " is not finite";
+  {
+    // Intervals first: they settle every reported value well inside its tolerance.
+    const IA r = IA(reported), tl = IA(tol), ti = to_ia(t);
+    const IA hi = r + tl, lo = r - tl;
+    if (hi.inf() >= 0.0 && (hi * hi - ti).inf() >= 0.0 &&
+        (lo.sup() <= 0.0 || (lo * lo - ti).sup() <= 0.0))
+      return std::nullopt;
+  }
   const Q hi = Q(reported) + Q(tol);
   const Q lo = Q(reported) - Q(tol);
   const bool ok = sgn(hi) >= 0 && hi * hi >= t && (sgn(lo) <= 0 || lo * lo <= t);
@@ -472,6 +482,13 @@ std::optional<std::string> check_radius(const char* name, double reported, const
 std::optional<std::string> check_difference(const char* name, double reported, const Q& a,
                                             const Q& b, double tol, int divisor) {
   if (!std::isfinite(reported)) return std::string("reported ") + name + " is not finite";
+  {
+    // Intervals first (√ of enclosures of a and b): they settle every reported value well
+    // inside its tolerance; the exact comparison below decides the rest.
+    const IA k(divisor), r = IA(reported), tl = IA(tol);
+    const IA w = CGAL::sqrt(to_ia(a)) - CGAL::sqrt(to_ia(b));
+    if ((w - (r - tl) * k).inf() >= 0.0 && (w - (r + tl) * k).sup() <= 0.0) return std::nullopt;
+  }
   const Q k(divisor);
   const Q lo = (Q(reported) - Q(tol)) * k;
   const Q hi = (Q(reported) + Q(tol)) * k;

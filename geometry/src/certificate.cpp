@@ -151,6 +151,8 @@ Q cross(const QPoint& a, const QPoint& b) { return a.x * b.y - a.y * b.x; }
 Q norm2(const QPoint& a) { return dot(a, a); }
 int sgn(const Q& q) { return static_cast<int>(CGAL::sign(q)); }
 
+IA to_ia(const Q& q) { return IA(CGAL::to_interval(q)); }
+
 /// Sign of the orientation of (a, b, c): +1 counter-clockwise.
 int orientation(const QPoint& a, const QPoint& b, const QPoint& c) {
   return sgn(cross(b - a, c - a));
@@ -199,39 +201,97 @@ int sign_sqrt_difference_minus(const Q& a, const Q& b, const Q& x) {
   return compare_sqrt_differences(a, Q(0), b, x * x);
 }
 
-/// dist² > (√R² − √r²)², i.e. dist² − R² − r² + 2√(R² r²) > 0.
-bool exceeds_width_squared(const Q& dist2, const Q& outer2, const Q& inner2) {
+/// dist² > (√R² − √r²)², dist the distance of q from the line through a and b, i.e.
+/// dist² − R² − r² + 2√(R² r²) > 0: intervals first, exact when they cannot tell.
+bool exceeds_width_squared(const QPoint& a, const QPoint& b, const QPoint& q, const Q& outer2,
+                           const Q& inner2) {
+  const QPoint e = b - a;
+  const Q cr = cross(e, q - a);
+  {
+    const IA cri = to_ia(cr), o2 = to_ia(outer2), i2 = to_ia(inner2);
+    const IA v = cri * cri / to_ia(norm2(e)) - o2 - i2 + IA(2) * CGAL::sqrt(o2 * i2);
+    if (v.inf() > 0.0) return true;
+    if (v.sup() < 0.0) return false;
+  }
+  const Q dist2 = cr * cr / norm2(e);
   return sign_p_plus_q_sqrt(dist2 - outer2 - inner2, Q(2), outer2 * inner2) > 0;
 }
 
-// ---- alternation (derivation (2)) --------------------------------------------------------
+/// Orientation of three input points, exactly (CGAL's filtered predicate).
+int input_orientation(Point2 a, Point2 b, Point2 c) {
+  return static_cast<int>(CGAL::orientation(Kernel::Point_2(a.x, a.y), Kernel::Point_2(b.x, b.y),
+                                            Kernel::Point_2(c.x, c.y)));
+}
 
-bool same_direction(const QPoint& a, const QPoint& b) {
-  return sgn(cross(a, b)) == 0 && sgn(dot(a, b)) > 0;
+// ---- alternation (derivation (2)) --------------------------------------------------------
+// Written once for exact vectors (QPoint, exact signs) and for interval vectors (IPoint,
+// signs that may be uncertain): the interval run decides when no sign was uncertain.
+
+struct IPoint {
+  IA x;
+  IA y;
+};
+IA cross(const IPoint& a, const IPoint& b) { return a.x * b.y - a.y * b.x; }
+IA dot(const IPoint& a, const IPoint& b) { return a.x * b.x + a.y * b.y; }
+
+struct ExactSign {
+  bool uncertain = false;  // never set: exact signs are always certain
+  int operator()(const Q& v) const { return sgn(v); }
+};
+
+/// The sign of an interval; flags `uncertain` (and answers 0) when it straddles zero.
+struct IntervalSign {
+  bool uncertain = false;
+  int operator()(const IA& v) {
+    if (v.inf() > 0.0) return 1;
+    if (v.sup() < 0.0) return -1;
+    if (v.inf() == 0.0 && v.sup() == 0.0) return 0;
+    uncertain = true;
+    return 0;
+  }
+};
+
+template <class V, class Sign>
+bool same_direction(const V& a, const V& b, Sign& sign) {
+  return sign(cross(a, b)) == 0 && sign(dot(a, b)) > 0;
 }
 
 /// w strictly inside the counter-clockwise open arc of directions from a to b (a, b not of
 /// one direction).
-bool in_open_ccw_arc(const QPoint& a, const QPoint& b, const QPoint& w) {
-  const int ab = sgn(cross(a, b));
-  if (ab > 0) return sgn(cross(a, w)) > 0 && sgn(cross(w, b)) > 0;
-  if (ab < 0) return !(sgn(cross(b, w)) >= 0 && sgn(cross(w, a)) >= 0);
-  return sgn(cross(a, w)) > 0;
+template <class V, class Sign>
+bool in_open_ccw_arc(const V& a, const V& b, const V& w, Sign& sign) {
+  const int ab = sign(cross(a, b));
+  if (ab > 0) return sign(cross(a, w)) > 0 && sign(cross(w, b)) > 0;
+  if (ab < 0) return !(sign(cross(b, w)) >= 0 && sign(cross(w, a)) >= 0);
+  return sign(cross(a, w)) > 0;
 }
 
-bool strictly_alternate(const QPoint& u1, const QPoint& u2, const QPoint& v1,
-                        const QPoint& v2) {
-  if (same_direction(u1, u2) || same_direction(v1, v2)) return false;
-  const bool v1_in_12 = in_open_ccw_arc(u1, u2, v1);
-  const bool v1_in_21 = in_open_ccw_arc(u2, u1, v1);
-  const bool v2_in_12 = in_open_ccw_arc(u1, u2, v2);
-  const bool v2_in_21 = in_open_ccw_arc(u2, u1, v2);
+template <class V, class Sign>
+bool strictly_alternate(const V& u1, const V& u2, const V& v1, const V& v2, Sign& sign) {
+  if (same_direction(u1, u2, sign) || same_direction(v1, v2, sign)) return false;
+  const bool v1_in_12 = in_open_ccw_arc(u1, u2, v1, sign);
+  const bool v1_in_21 = in_open_ccw_arc(u2, u1, v1, sign);
+  const bool v2_in_12 = in_open_ccw_arc(u1, u2, v2, sign);
+  const bool v2_in_21 = in_open_ccw_arc(u2, u1, v2, sign);
   return (v1_in_12 && v2_in_21) || (v1_in_21 && v2_in_12);
 }
 
-// ---- interval filters --------------------------------------------------------------------
+/// Strict alternation of the contacts o1, o2 (outer) and i1, i2 (inner) about the exact
+/// centre c (cx, cy its enclosures): intervals first, exact when a sign is uncertain.
+bool strictly_alternate_about(const QPoint& c, const IA& cx, const IA& cy, Point2 o1, Point2 o2,
+                              Point2 i1, Point2 i2) {
+  {
+    auto ray = [&](Point2 p) { return IPoint{IA(p.x) - cx, IA(p.y) - cy}; };
+    IntervalSign sign;
+    const bool r = strictly_alternate(ray(o1), ray(o2), ray(i1), ray(i2), sign);
+    if (!sign.uncertain) return r;
+  }
+  auto ray = [&](Point2 p) { return to_q(p) - c; };
+  ExactSign sign;
+  return strictly_alternate(ray(o1), ray(o2), ray(i1), ray(i2), sign);
+}
 
-IA to_ia(const Q& q) { return IA(CGAL::to_interval(q)); }
+// ---- interval filters --------------------------------------------------------------------
 
 /// Exact squared distances from a rational centre, as integers over one denominator
 /// (derivation (6)): no rational arithmetic (and no gcd) per point.
@@ -760,7 +820,7 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
         const Q inner2 = norm2(qi1 - *c);
         if (inner2 >= outer2) continue;
         if (compare_sqrt_differences(outer2, inner2, zone.outer2, zone.inner2) >= 0) continue;
-        if (!strictly_alternate(qo1 - *c, qo2 - *c, qi1 - *c, qi2 - *c)) continue;
+        if (!strictly_alternate_about(*c, to_ia(c->x), to_ia(c->y), o1, o2, ie.a, ie.b)) continue;
         // Final, self-evident check of the narrower zone: every point in its annulus.
         const FilteredCircle fc = filtered(*c);
         const Threshold o2d = threshold(o1, fc), i2d = threshold(ie.a, fc);
@@ -849,7 +909,8 @@ Verification verify(std::span<const Point2> points, const MinimumZoneCircle& mz)
     if (compare_distance2(points[k], d, fc, i2d) < 0)
       return fail(what, index_name("point", k) + " lies inside the inner circle");
   }
-  if (!strictly_alternate(o1 - *c, o2 - *c, i1 - *c, i2 - *c)) {
+  if (!strictly_alternate_about(*c, fc.cx, fc.cy, points[io1], points[io2], points[ii1],
+                                points[ii2])) {
     std::ostringstream os;
     os << "contacts do not alternate strictly in angle about the centre (outer " << io1
        << ", " << io2 << "; inner " << ii1 << ", " << ii2 << ")";
@@ -875,17 +936,18 @@ Verification verify(std::span<const Point2> points, const MinimumZoneCircle& mz)
   if (mz.certificate.optimality != Optimality::global) return Verification{true, {}};
 
   // Global claim, derivation (4): crossing segments and distances to the other pair's line.
-  bool unique = orientation(o1, o2, i1) * orientation(o1, o2, i2) < 0 &&
-                orientation(i1, i2, o1) * orientation(i1, i2, o2) < 0;
+  const auto orient = [&](std::size_t a, std::size_t b, std::size_t k) {
+    return input_orientation(points[a], points[b], points[k]);
+  };
+  bool unique = orient(io1, io2, ii1) * orient(io1, io2, ii2) < 0 &&
+                orient(ii1, ii2, io1) * orient(ii1, ii2, io2) < 0;
   if (unique) {
     const std::array<std::array<const QPoint*, 3>, 4> tests{{{&o1, &o2, &i1},
                                                              {&o1, &o2, &i2},
                                                              {&i1, &i2, &o1},
                                                              {&i1, &i2, &o2}}};
     for (const auto& t : tests) {
-      const QPoint e = *t[1] - *t[0];
-      const Q cr = cross(e, *t[2] - *t[0]);
-      if (!exceeds_width_squared(cr * cr / norm2(e), zone.outer2, zone.inner2)) {
+      if (!exceeds_width_squared(*t[0], *t[1], *t[2], zone.outer2, zone.inner2)) {
         unique = false;
         break;
       }
@@ -924,9 +986,12 @@ Verification verify(std::span<const Point2> points, const MinimumCircumscribedCi
     const auto cc = equidistant_point(a, b, a, d);
     if (!cc) return fail(what, "the 3 contacts are collinear");
     c = *cc;
-    const int o = orientation(a, b, d);
-    if (orientation(a, b, c) * o < 0 || orientation(b, d, c) * o < 0 ||
-        orientation(d, a, c) * o < 0) {
+    const Point2 pa = points[idx[0]], pb = points[idx[1]], pd = points[idx[2]];
+    const FilteredCircle centre = filtered(c);
+    const int o = input_orientation(pa, pb, pd);
+    if (orientation_filtered(pa, pb, centre) * o < 0 ||
+        orientation_filtered(pb, pd, centre) * o < 0 ||
+        orientation_filtered(pd, pa, centre) * o < 0) {
       std::ostringstream os;
       os << "the centre lies outside the triangle of contacts " << idx[0] << ", " << idx[1]
          << ", " << idx[2] << " (a smaller circle exists)";
@@ -1102,9 +1167,12 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
   const auto cc = equidistant_point(a, b, a, d);
   if (!cc) return fail(what, "the 3 contacts are collinear");
   const QPoint c = *cc;
-  const int o = orientation(a, b, d);
-  const std::array<int, 3> side{orientation(a, b, c) * o, orientation(b, d, c) * o,
-                                orientation(d, a, c) * o};
+  const FilteredCircle fc = filtered(c);
+  const Point2 pa = points[idx[0]], pb = points[idx[1]], pd = points[idx[2]];
+  const int o = input_orientation(pa, pb, pd);
+  const std::array<int, 3> side{orientation_filtered(pa, pb, fc) * o,
+                                orientation_filtered(pb, pd, fc) * o,
+                                orientation_filtered(pd, pa, fc) * o};
   if (side[0] < 0 || side[1] < 0 || side[2] < 0) {
     std::ostringstream os;
     os << "the centre is outside the triangle of contacts " << idx[0] << ", " << idx[1]
@@ -1112,7 +1180,6 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
     return fail(what, os.str());
   }
   const Q r2 = norm2(a - c);
-  const FilteredCircle fc = filtered(c);
   const Threshold r2d = threshold(points[idx[0]], fc);
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (compare_distance2(points[k], fc, r2d) < 0)

@@ -16,6 +16,7 @@
 // NaN and ∞ never pass `>`.
 #pragma once
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <utility>
@@ -51,7 +52,7 @@ inline double filter_error_bound(double m, double delta) {
 inline Distance2 distance2(Point2 p, const ApproxCentre& c) {
   const double a = p.x - c.x;
   const double b = p.y - c.y;
-  const double m = std::fmax(std::fabs(a), std::fabs(b));
+  const double m = std::max(std::fabs(a), std::fabs(b));  // finite inputs: no NaN here
   return {a * a + b * b, filter_error_bound(m, c.delta)};
 }
 
@@ -69,8 +70,8 @@ inline int certain_sign(const Distance2& a, const Distance2& b) {
 /// undecided.
 inline int certain_orientation(const ApproxCentre& c, Point2 p, Point2 q) {
   const double ux = p.x - c.x, uy = p.y - c.y, vx = q.x - c.x, vy = q.y - c.y;
-  const double m = std::fmax(std::fmax(std::fabs(ux), std::fabs(uy)),
-                             std::fmax(std::fabs(vx), std::fabs(vy)));
+  const double m = std::max(std::max(std::fabs(ux), std::fabs(uy)),
+                            std::max(std::fabs(vx), std::fabs(vy)));
   const double v = ux * vy - uy * vx;
   const double tol = filter_error_bound(m, c.delta);
   if (v > tol) return 1;

@@ -28,7 +28,7 @@ std::optional<double> max_step2(std::size_t n, At at, const ApproxCentre& c) {
     if (o == 0 || (turn != 0 && o != turn)) return false;
     turn = o;
     const double dx = q.x - p.x, dy = q.y - p.y;
-    longest = std::fmax(longest, dx * dx + dy * dy);
+    longest = std::max(longest, dx * dx + dy * dy);
     return true;
   };
   for (std::size_t k = 0; k < n; ++k) {

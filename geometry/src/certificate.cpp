@@ -389,24 +389,28 @@ IA interval_distance2(Point2 p, const FilteredCircle& fc) {
   return dx * dx + dy * dy;
 }
 
-Threshold threshold(Point2 ref, const FilteredCircle& fc) {
-  return {ref, internal::distance2(ref, fc.approx), interval_distance2(ref, fc)};
+/// t2 = |c − ref|² exactly: its enclosure is one rounding wide, much tighter than the interval
+/// computation from c's enclosure (which would send more near-ties to the exact stage).
+Threshold threshold(Point2 ref, const FilteredCircle& fc, const Q& t2) {
+  return {ref, internal::distance2(ref, fc.approx), to_ia(t2)};
 }
 
 /// sign(|c − p|² − |c − t.ref|²) given p's static-filter value d: three stages — the static
 /// filter (a few flops), intervals (tighter, ~10× the cost: they decide most near-ties of
 /// points co-circular to within rounding), exact integers (CentreDistances) for the rest.
-int compare_distance2(Point2 p, const internal::Distance2& d, const FilteredCircle& fc,
-                      const Threshold& t) {
+int compare_distance2(Point2 p, const internal::Distance2& d, std::optional<IA>& ia,
+                      const FilteredCircle& fc, const Threshold& t) {
   if (const int s = internal::certain_sign(d, t.approx)) return s;
-  const IA diff = interval_distance2(p, fc) - t.enclosure;
+  if (!ia) ia = interval_distance2(p, fc);  // once per point, however many thresholds
+  const IA diff = *ia - t.enclosure;
   if (diff.inf() > 0.0) return 1;
   if (diff.sup() < 0.0) return -1;
   return fc.exact().compare(p, t.ref);
 }
 
 int compare_distance2(Point2 p, const FilteredCircle& fc, const Threshold& t) {
-  return compare_distance2(p, internal::distance2(p, fc.approx), fc, t);
+  std::optional<IA> ia;
+  return compare_distance2(p, internal::distance2(p, fc.approx), ia, fc, t);
 }
 
 /// max_p |c − p|² (want_max) or min_p |c − p|², exact, with a filtered pre-selection: the
@@ -742,7 +746,7 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
     const QPoint a = to_q(hull[0]), b = to_q(hull[1]), c = to_q(hull[2]);
     if (auto cc = equidistant_point(a, b, a, c)) {
       const FilteredCircle fc = filtered(*cc);
-      const Threshold r2d = threshold(hull[0], fc);
+      const Threshold r2d = threshold(hull[0], fc, norm2(a - *cc));
       bool all_on = true;
       for (const Point2& p : pts) {
         if (compare_distance2(p, fc, r2d) != 0) {
@@ -823,7 +827,7 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
         if (!strictly_alternate_about(*c, to_ia(c->x), to_ia(c->y), o1, o2, ie.a, ie.b)) continue;
         // Final, self-evident check of the narrower zone: every point in its annulus.
         const FilteredCircle fc = filtered(*c);
-        const Threshold o2d = threshold(o1, fc), i2d = threshold(ie.a, fc);
+        const Threshold o2d = threshold(o1, fc, outer2), i2d = threshold(ie.a, fc, inner2);
         bool contained = true;
         for (std::size_t k = 0; k < pts.size() && contained; ++k)
           contained = compare_distance2(pts[k], fc, o2d) <= 0 &&
@@ -854,7 +858,7 @@ Verification verify_zero_width(std::span<const Point2> points, const MinimumZone
   if (!c) return fail(what, "the 3 contacts are collinear");
   const Q r2 = norm2(p0 - *c);
   const FilteredCircle fc = filtered(*c);
-  const Threshold r2d = threshold(points[a[0]], fc);
+  const Threshold r2d = threshold(points[a[0]], fc, r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (compare_distance2(points[k], fc, r2d) != 0)
       return fail(what, index_name("point", k) + " is not on the circle of the contacts");
@@ -900,13 +904,15 @@ Verification verify(std::span<const Point2> points, const MinimumZoneCircle& mz)
   if (zone.inner2 >= zone.outer2) return fail(what, "exact r^2 >= R^2: the inner contacts are not inside the outer circle");
   // Containment, exact (filtered).
   const FilteredCircle fc = filtered(*c);
-  const Threshold o2d = threshold(points[io1], fc), i2d = threshold(points[ii1], fc);
+  const Threshold o2d = threshold(points[io1], fc, zone.outer2);
+  const Threshold i2d = threshold(points[ii1], fc, zone.inner2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    // One static-filter distance for both radii.
+    // One static-filter distance (and at most one interval one) for both radii.
     const internal::Distance2 d = internal::distance2(points[k], fc.approx);
-    if (compare_distance2(points[k], d, fc, o2d) > 0)
+    std::optional<IA> ia;
+    if (compare_distance2(points[k], d, ia, fc, o2d) > 0)
       return fail(what, index_name("point", k) + " lies outside the outer circle");
-    if (compare_distance2(points[k], d, fc, i2d) < 0)
+    if (compare_distance2(points[k], d, ia, fc, i2d) < 0)
       return fail(what, index_name("point", k) + " lies inside the inner circle");
   }
   if (!strictly_alternate_about(*c, fc.cx, fc.cy, points[io1], points[io2], points[ii1],
@@ -1000,7 +1006,7 @@ Verification verify(std::span<const Point2> points, const MinimumCircumscribedCi
   }
   const Q r2 = norm2(a - c);
   const FilteredCircle fc = filtered(c);
-  const Threshold r2d = threshold(points[idx[0]], fc);
+  const Threshold r2d = threshold(points[idx[0]], fc, r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (compare_distance2(points[k], fc, r2d) > 0)
       return fail(what, index_name("point", k) + " lies outside the circle");
@@ -1180,7 +1186,7 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
     return fail(what, os.str());
   }
   const Q r2 = norm2(a - c);
-  const Threshold r2d = threshold(points[idx[0]], fc);
+  const Threshold r2d = threshold(points[idx[0]], fc, r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
     if (compare_distance2(points[k], fc, r2d) < 0)
       return fail(what, index_name("point", k) + " lies strictly inside the circle");

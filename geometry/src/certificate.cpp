@@ -309,10 +309,15 @@ class CentreDistances {
   CentreDistances(const CentreDistances&) = delete;
   CentreDistances& operator=(const CentreDistances&) = delete;
 
-  /// sign(|p − c|² − |q − c|²), exactly.
+  /// sign(|p − c|² − |q − c|²), exactly. q's numerator is kept for the next call with the
+  /// same q and shift (the reference contact of a whole containment pass).
   int compare(Point2 p, Point2 q) {
     const long s = std::max(shift_of(p), shift_of(q));
-    numerator(q, s, ref_);
+    if (!(s == ref_shift_ && q == ref_point_)) {
+      numerator(q, s, ref_);
+      ref_shift_ = s;
+      ref_point_ = q;
+    }
     numerator(p, s, t_);
     return mpz_cmp(t_, ref_) > 0 ? 1 : (mpz_cmp(t_, ref_) < 0 ? -1 : 0);
   }
@@ -353,6 +358,8 @@ class CentreDistances {
   }
 
   mpz_t X_, Y_, D_, px_, py_, t_, ref_;
+  long ref_shift_ = -1;  // the shift and point ref_ holds the numerator of (none yet)
+  Point2 ref_point_{};
 };
 
 /// A rational centre with its enclosures, for filtered distance comparisons.

@@ -1,8 +1,11 @@
 // certificate.cpp — the independent exact checks of reference-circle certificates.
 //
-// Shares no code with the fitters (it includes no geometry/src/internal header): its own
-// rational arithmetic (CGAL::Exact_rational, GMP mpq), its own interval filters
-// (CGAL::Interval_nt, exact fallback whenever a sign is uncertain), its own predicates.
+// Shares no code with the fitters (the only internal headers it includes, verify_distance.h and
+// verify_inscribed_cover.h, serve verify() alone): its own rational arithmetic
+// (CGAL::Exact_rational, GMP mpq), its own filters — a static floating-point filter with a
+// proven error bound for the per-point distance comparisons (verify_distance.h), interval
+// arithmetic (CGAL::Interval_nt) elsewhere, the exact path whenever a sign is uncertain — and
+// its own predicates.
 // Every decision is exact; no square root is ever taken of a rational — lengths are
 // compared through squares by the identities below.
 //
@@ -116,6 +119,8 @@
 #include <utility>
 #include <vector>
 
+#include "internal/verify_distance.h"
+#include "internal/verify_inscribed_cover.h"
 #include "vcmm/geometry/maximum_inscribed.h"
 #include "vcmm/geometry/minimum_circumscribed.h"
 #include "vcmm/geometry/minimum_zone.h"
@@ -145,6 +150,8 @@ Q dot(const QPoint& a, const QPoint& b) { return a.x * b.x + a.y * b.y; }
 Q cross(const QPoint& a, const QPoint& b) { return a.x * b.y - a.y * b.x; }
 Q norm2(const QPoint& a) { return dot(a, a); }
 int sgn(const Q& q) { return static_cast<int>(CGAL::sign(q)); }
+
+IA to_ia(const Q& q) { return IA(CGAL::to_interval(q)); }
 
 /// Sign of the orientation of (a, b, c): +1 counter-clockwise.
 int orientation(const QPoint& a, const QPoint& b, const QPoint& c) {
@@ -194,39 +201,97 @@ int sign_sqrt_difference_minus(const Q& a, const Q& b, const Q& x) {
   return compare_sqrt_differences(a, Q(0), b, x * x);
 }
 
-/// dist² > (√R² − √r²)², i.e. dist² − R² − r² + 2√(R² r²) > 0.
-bool exceeds_width_squared(const Q& dist2, const Q& outer2, const Q& inner2) {
+/// dist² > (√R² − √r²)², dist the distance of q from the line through a and b, i.e.
+/// dist² − R² − r² + 2√(R² r²) > 0: intervals first, exact when they cannot tell.
+bool exceeds_width_squared(const QPoint& a, const QPoint& b, const QPoint& q, const Q& outer2,
+                           const Q& inner2) {
+  const QPoint e = b - a;
+  const Q cr = cross(e, q - a);
+  {
+    const IA cri = to_ia(cr), o2 = to_ia(outer2), i2 = to_ia(inner2);
+    const IA v = cri * cri / to_ia(norm2(e)) - o2 - i2 + IA(2) * CGAL::sqrt(o2 * i2);
+    if (v.inf() > 0.0) return true;
+    if (v.sup() < 0.0) return false;
+  }
+  const Q dist2 = cr * cr / norm2(e);
   return sign_p_plus_q_sqrt(dist2 - outer2 - inner2, Q(2), outer2 * inner2) > 0;
 }
 
-// ---- alternation (derivation (2)) --------------------------------------------------------
+/// Orientation of three input points, exactly (CGAL's filtered predicate).
+int input_orientation(Point2 a, Point2 b, Point2 c) {
+  return static_cast<int>(CGAL::orientation(Kernel::Point_2(a.x, a.y), Kernel::Point_2(b.x, b.y),
+                                            Kernel::Point_2(c.x, c.y)));
+}
 
-bool same_direction(const QPoint& a, const QPoint& b) {
-  return sgn(cross(a, b)) == 0 && sgn(dot(a, b)) > 0;
+// ---- alternation (derivation (2)) --------------------------------------------------------
+// Written once for exact vectors (QPoint, exact signs) and for interval vectors (IPoint,
+// signs that may be uncertain): the interval run decides when no sign was uncertain.
+
+struct IPoint {
+  IA x;
+  IA y;
+};
+IA cross(const IPoint& a, const IPoint& b) { return a.x * b.y - a.y * b.x; }
+IA dot(const IPoint& a, const IPoint& b) { return a.x * b.x + a.y * b.y; }
+
+struct ExactSign {
+  bool uncertain = false;  // never set: exact signs are always certain
+  int operator()(const Q& v) const { return sgn(v); }
+};
+
+/// The sign of an interval; flags `uncertain` (and answers 0) when it straddles zero.
+struct IntervalSign {
+  bool uncertain = false;
+  int operator()(const IA& v) {
+    if (v.inf() > 0.0) return 1;
+    if (v.sup() < 0.0) return -1;
+    if (v.inf() == 0.0 && v.sup() == 0.0) return 0;
+    uncertain = true;
+    return 0;
+  }
+};
+
+template <class V, class Sign>
+bool same_direction(const V& a, const V& b, Sign& sign) {
+  return sign(cross(a, b)) == 0 && sign(dot(a, b)) > 0;
 }
 
 /// w strictly inside the counter-clockwise open arc of directions from a to b (a, b not of
 /// one direction).
-bool in_open_ccw_arc(const QPoint& a, const QPoint& b, const QPoint& w) {
-  const int ab = sgn(cross(a, b));
-  if (ab > 0) return sgn(cross(a, w)) > 0 && sgn(cross(w, b)) > 0;
-  if (ab < 0) return !(sgn(cross(b, w)) >= 0 && sgn(cross(w, a)) >= 0);
-  return sgn(cross(a, w)) > 0;
+template <class V, class Sign>
+bool in_open_ccw_arc(const V& a, const V& b, const V& w, Sign& sign) {
+  const int ab = sign(cross(a, b));
+  if (ab > 0) return sign(cross(a, w)) > 0 && sign(cross(w, b)) > 0;
+  if (ab < 0) return !(sign(cross(b, w)) >= 0 && sign(cross(w, a)) >= 0);
+  return sign(cross(a, w)) > 0;
 }
 
-bool strictly_alternate(const QPoint& u1, const QPoint& u2, const QPoint& v1,
-                        const QPoint& v2) {
-  if (same_direction(u1, u2) || same_direction(v1, v2)) return false;
-  const bool v1_in_12 = in_open_ccw_arc(u1, u2, v1);
-  const bool v1_in_21 = in_open_ccw_arc(u2, u1, v1);
-  const bool v2_in_12 = in_open_ccw_arc(u1, u2, v2);
-  const bool v2_in_21 = in_open_ccw_arc(u2, u1, v2);
+template <class V, class Sign>
+bool strictly_alternate(const V& u1, const V& u2, const V& v1, const V& v2, Sign& sign) {
+  if (same_direction(u1, u2, sign) || same_direction(v1, v2, sign)) return false;
+  const bool v1_in_12 = in_open_ccw_arc(u1, u2, v1, sign);
+  const bool v1_in_21 = in_open_ccw_arc(u2, u1, v1, sign);
+  const bool v2_in_12 = in_open_ccw_arc(u1, u2, v2, sign);
+  const bool v2_in_21 = in_open_ccw_arc(u2, u1, v2, sign);
   return (v1_in_12 && v2_in_21) || (v1_in_21 && v2_in_12);
 }
 
-// ---- interval filters --------------------------------------------------------------------
+/// Strict alternation of the contacts o1, o2 (outer) and i1, i2 (inner) about the exact
+/// centre c (cx, cy its enclosures): intervals first, exact when a sign is uncertain.
+bool strictly_alternate_about(const QPoint& c, const IA& cx, const IA& cy, Point2 o1, Point2 o2,
+                              Point2 i1, Point2 i2) {
+  {
+    auto ray = [&](Point2 p) { return IPoint{IA(p.x) - cx, IA(p.y) - cy}; };
+    IntervalSign sign;
+    const bool r = strictly_alternate(ray(o1), ray(o2), ray(i1), ray(i2), sign);
+    if (!sign.uncertain) return r;
+  }
+  auto ray = [&](Point2 p) { return to_q(p) - c; };
+  ExactSign sign;
+  return strictly_alternate(ray(o1), ray(o2), ray(i1), ray(i2), sign);
+}
 
-IA to_ia(const Q& q) { return IA(CGAL::to_interval(q)); }
+// ---- interval filters --------------------------------------------------------------------
 
 /// Exact squared distances from a rational centre, as integers over one denominator
 /// (derivation (6)): no rational arithmetic (and no gcd) per point.
@@ -244,10 +309,15 @@ class CentreDistances {
   CentreDistances(const CentreDistances&) = delete;
   CentreDistances& operator=(const CentreDistances&) = delete;
 
-  /// sign(|p − c|² − |q − c|²), exactly.
+  /// sign(|p − c|² − |q − c|²), exactly. q's numerator is kept for the next call with the
+  /// same q and shift (the reference contact of a whole containment pass).
   int compare(Point2 p, Point2 q) {
     const long s = std::max(shift_of(p), shift_of(q));
-    numerator(q, s, ref_);
+    if (!(s == ref_shift_ && q == ref_point_)) {
+      numerator(q, s, ref_);
+      ref_shift_ = s;
+      ref_point_ = q;
+    }
     numerator(p, s, t_);
     return mpz_cmp(t_, ref_) > 0 ? 1 : (mpz_cmp(t_, ref_) < 0 ? -1 : 0);
   }
@@ -288,13 +358,16 @@ class CentreDistances {
   }
 
   mpz_t X_, Y_, D_, px_, py_, t_, ref_;
+  long ref_shift_ = -1;  // the shift and point ref_ holds the numerator of (none yet)
+  Point2 ref_point_{};
 };
 
-/// A rational circle with its interval enclosure, for filtered distance comparisons.
+/// A rational centre with its enclosures, for filtered distance comparisons.
 struct FilteredCircle {
   QPoint c;
   IA cx;
   IA cy;
+  internal::ApproxCentre approx;  // the static filter's view of c (verify_distance.h)
   /// The exact stage, built on first use (only near-ties need it).
   CentreDistances& exact() const {
     if (!exact_) exact_ = std::make_unique<CentreDistances>(c);
@@ -303,33 +376,77 @@ struct FilteredCircle {
   mutable std::unique_ptr<CentreDistances> exact_;
 };
 
-FilteredCircle filtered(const QPoint& c) { return {c, to_ia(c.x), to_ia(c.y), nullptr}; }
-
-/// sign(|c − p|² − |c − ref|²), t_ia enclosing |c − ref|²: interval first, exact integers
-/// (CentreDistances) when the interval straddles zero.
-int compare_distance2(Point2 p, const FilteredCircle& fc, Point2 ref, const IA& t_ia) {
-  const IA dx = IA(p.x) - fc.cx;
-  const IA dy = IA(p.y) - fc.cy;
-  const IA d = dx * dx + dy * dy - t_ia;
-  if (d.inf() > 0.0) return 1;
-  if (d.sup() < 0.0) return -1;
-  return fc.exact().compare(p, ref);
+FilteredCircle filtered(const QPoint& c) {
+  const IA cx = to_ia(c.x), cy = to_ia(c.y);
+  return {c, cx, cy, internal::approx_centre({cx.inf(), cx.sup()}, {cy.inf(), cy.sup()}),
+          nullptr};
 }
 
-/// max_p |c − p|² (want_max) or min_p |c − p|², exact, with an interval pre-selection.
+/// |c − ref|² for a comparison made many times: the reference point, its static-filter value
+/// and its interval enclosure.
+struct Threshold {
+  Point2 ref;
+  internal::Distance2 approx;
+  IA enclosure;
+};
+
+IA interval_distance2(Point2 p, const FilteredCircle& fc) {
+  const IA dx = IA(p.x) - fc.cx;
+  const IA dy = IA(p.y) - fc.cy;
+  return dx * dx + dy * dy;
+}
+
+/// t2 = |c − ref|² exactly: its enclosure is one rounding wide, much tighter than the interval
+/// computation from c's enclosure (which would send more near-ties to the exact stage).
+Threshold threshold(Point2 ref, const FilteredCircle& fc, const Q& t2) {
+  return {ref, internal::distance2(ref, fc.approx), to_ia(t2)};
+}
+
+/// sign(|c − p|² − |c − t.ref|²) given p's static-filter value d: three stages — the static
+/// filter (a few flops), intervals (tighter, ~10× the cost: they decide most near-ties of
+/// points co-circular to within rounding), exact integers (CentreDistances) for the rest.
+int compare_distance2(Point2 p, const internal::Distance2& d, std::optional<IA>& ia,
+                      const FilteredCircle& fc, const Threshold& t) {
+  if (const int s = internal::certain_sign(d, t.approx)) return s;
+  if (!ia) ia = interval_distance2(p, fc);  // once per point, however many thresholds
+  const IA diff = *ia - t.enclosure;
+  if (diff.inf() > 0.0) return 1;
+  if (diff.sup() < 0.0) return -1;
+  return fc.exact().compare(p, t.ref);
+}
+
+int compare_distance2(Point2 p, const FilteredCircle& fc, const Threshold& t) {
+  std::optional<IA> ia;
+  return compare_distance2(p, internal::distance2(p, fc.approx), ia, fc, t);
+}
+
+/// max_p |c − p|² (want_max) or min_p |c − p|², exact, with a filtered pre-selection: the
+/// static filter's bounds, then intervals for the points they leave, then exact comparisons
+/// among the points whose enclosure still reaches the best bound.
 Q extreme_distance2(std::span<const Point2> points, const FilteredCircle& fc, bool want_max) {
-  std::vector<IA> d(points.size());
-  double bound = want_max ? -std::numeric_limits<double>::infinity()
-                          : std::numeric_limits<double>::infinity();
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<internal::Distance2> d(points.size());
+  double bound = want_max ? -inf : inf;
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const IA dx = IA(points[k].x) - fc.cx;
-    const IA dy = IA(points[k].y) - fc.cy;
-    d[k] = dx * dx + dy * dy;
-    bound = want_max ? std::max(bound, d[k].inf()) : std::min(bound, d[k].sup());
+    d[k] = internal::distance2(points[k], fc.approx);
+    bound = want_max ? std::max(bound, d[k].value - d[k].error)
+                     : std::min(bound, d[k].value + d[k].error);
+  }
+  // The bounds are rounded: widen the test by a relative 2⁻³⁰ so no candidate is lost to it.
+  const double slack = std::fabs(bound) * 0x1p-30;
+  std::vector<std::pair<std::size_t, IA>> candidates;
+  double ia_bound = want_max ? -inf : inf;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (want_max ? d[k].value + d[k].error < bound - slack
+                 : d[k].value - d[k].error > bound + slack)
+      continue;
+    const IA v = interval_distance2(points[k], fc);
+    ia_bound = want_max ? std::max(ia_bound, v.inf()) : std::min(ia_bound, v.sup());
+    candidates.emplace_back(k, v);
   }
   std::optional<std::size_t> best;
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    if (want_max ? d[k].sup() < bound : d[k].inf() > bound) continue;
+  for (const auto& [k, v] : candidates) {
+    if (want_max ? v.sup() < ia_bound : v.inf() > ia_bound) continue;
     if (!best) {
       best = k;
       continue;
@@ -397,6 +514,8 @@ std::string describe(const Q& v) { return describe(CGAL::to_double(v)); }
 std::optional<std::string> check_centre(Point2 reported, const QPoint& c, double tol) {
   if (!std::isfinite(reported.x) || !std::isfinite(reported.y))
     return "reported centre is not finite";
+  const IA dx = IA(reported.x) - to_ia(c.x), dy = IA(reported.y) - to_ia(c.y);
+  if (CGAL::abs(dx).sup() <= tol && CGAL::abs(dy).sup() <= tol) return std::nullopt;
   const Q t(tol);
   if (CGAL::abs(Q(reported.x) - c.x) > t || CGAL::abs(Q(reported.y) - c.y) > t) {
     return "reported centre (" + describe(reported.x) + ", " + describe(reported.y) +
@@ -410,6 +529,14 @@ std::optional<std::string> check_centre(Point2 reported, const QPoint& c, double
 std::optional<std::string> check_radius(const char* name, double reported, const Q& t,
                                         double tol) {
   if (!std::isfinite(reported)) return std::string("reported ") + name + " is not finite";
+  {
+    // Intervals first: they settle every reported value well inside its tolerance.
+    const IA r = IA(reported), tl = IA(tol), ti = to_ia(t);
+    const IA hi = r + tl, lo = r - tl;
+    if (hi.inf() >= 0.0 && (hi * hi - ti).inf() >= 0.0 &&
+        (lo.sup() <= 0.0 || (lo * lo - ti).sup() <= 0.0))
+      return std::nullopt;
+  }
   const Q hi = Q(reported) + Q(tol);
   const Q lo = Q(reported) - Q(tol);
   const bool ok = sgn(hi) >= 0 && hi * hi >= t && (sgn(lo) <= 0 || lo * lo <= t);
@@ -426,6 +553,13 @@ std::optional<std::string> check_radius(const char* name, double reported, const
 std::optional<std::string> check_difference(const char* name, double reported, const Q& a,
                                             const Q& b, double tol, int divisor) {
   if (!std::isfinite(reported)) return std::string("reported ") + name + " is not finite";
+  {
+    // Intervals first (√ of enclosures of a and b): they settle every reported value well
+    // inside its tolerance; the exact comparison below decides the rest.
+    const IA k(divisor), r = IA(reported), tl = IA(tol);
+    const IA w = CGAL::sqrt(to_ia(a)) - CGAL::sqrt(to_ia(b));
+    if ((w - (r - tl) * k).inf() >= 0.0 && (w - (r + tl) * k).sup() <= 0.0) return std::nullopt;
+  }
   const Q k(divisor);
   const Q lo = (Q(reported) - Q(tol)) * k;
   const Q hi = (Q(reported) + Q(tol)) * k;
@@ -618,12 +752,11 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
   {
     const QPoint a = to_q(hull[0]), b = to_q(hull[1]), c = to_q(hull[2]);
     if (auto cc = equidistant_point(a, b, a, c)) {
-      const Q r2 = norm2(a - *cc);
       const FilteredCircle fc = filtered(*cc);
-      const IA r2i = to_ia(r2);
+      const Threshold r2d = threshold(hull[0], fc, norm2(a - *cc));
       bool all_on = true;
       for (const Point2& p : pts) {
-        if (compare_distance2(p, fc, hull[0], r2i) != 0) {
+        if (compare_distance2(p, fc, r2d) != 0) {
           all_on = false;
           break;
         }
@@ -698,14 +831,14 @@ GlobalCheck check_global_by_enumeration(std::span<const Point2> points, const Zo
         const Q inner2 = norm2(qi1 - *c);
         if (inner2 >= outer2) continue;
         if (compare_sqrt_differences(outer2, inner2, zone.outer2, zone.inner2) >= 0) continue;
-        if (!strictly_alternate(qo1 - *c, qo2 - *c, qi1 - *c, qi2 - *c)) continue;
+        if (!strictly_alternate_about(*c, to_ia(c->x), to_ia(c->y), o1, o2, ie.a, ie.b)) continue;
         // Final, self-evident check of the narrower zone: every point in its annulus.
         const FilteredCircle fc = filtered(*c);
-        const IA o2i = to_ia(outer2), i2i = to_ia(inner2);
+        const Threshold o2d = threshold(o1, fc, outer2), i2d = threshold(ie.a, fc, inner2);
         bool contained = true;
         for (std::size_t k = 0; k < pts.size() && contained; ++k)
-          contained = compare_distance2(pts[k], fc, o1, o2i) <= 0 &&
-                      compare_distance2(pts[k], fc, ie.a, i2i) >= 0;
+          contained = compare_distance2(pts[k], fc, o2d) <= 0 &&
+                      compare_distance2(pts[k], fc, i2d) >= 0;
         if (!contained) continue;
         std::ostringstream os;
         os.precision(17);
@@ -732,9 +865,9 @@ Verification verify_zero_width(std::span<const Point2> points, const MinimumZone
   if (!c) return fail(what, "the 3 contacts are collinear");
   const Q r2 = norm2(p0 - *c);
   const FilteredCircle fc = filtered(*c);
-  const IA r2i = to_ia(r2);
+  const Threshold r2d = threshold(points[a[0]], fc, r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, points[a[0]], r2i) != 0)
+    if (compare_distance2(points[k], fc, r2d) != 0)
       return fail(what, index_name("point", k) + " is not on the circle of the contacts");
   }
   const double scale = scale_of(*c, r2);
@@ -778,14 +911,19 @@ Verification verify(std::span<const Point2> points, const MinimumZoneCircle& mz)
   if (zone.inner2 >= zone.outer2) return fail(what, "exact r^2 >= R^2: the inner contacts are not inside the outer circle");
   // Containment, exact (filtered).
   const FilteredCircle fc = filtered(*c);
-  const IA o2i = to_ia(zone.outer2), i2i = to_ia(zone.inner2);
+  const Threshold o2d = threshold(points[io1], fc, zone.outer2);
+  const Threshold i2d = threshold(points[ii1], fc, zone.inner2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, points[io1], o2i) > 0)
+    // One static-filter distance (and at most one interval one) for both radii.
+    const internal::Distance2 d = internal::distance2(points[k], fc.approx);
+    std::optional<IA> ia;
+    if (compare_distance2(points[k], d, ia, fc, o2d) > 0)
       return fail(what, index_name("point", k) + " lies outside the outer circle");
-    if (compare_distance2(points[k], fc, points[ii1], i2i) < 0)
+    if (compare_distance2(points[k], d, ia, fc, i2d) < 0)
       return fail(what, index_name("point", k) + " lies inside the inner circle");
   }
-  if (!strictly_alternate(o1 - *c, o2 - *c, i1 - *c, i2 - *c)) {
+  if (!strictly_alternate_about(*c, fc.cx, fc.cy, points[io1], points[io2], points[ii1],
+                                points[ii2])) {
     std::ostringstream os;
     os << "contacts do not alternate strictly in angle about the centre (outer " << io1
        << ", " << io2 << "; inner " << ii1 << ", " << ii2 << ")";
@@ -811,17 +949,18 @@ Verification verify(std::span<const Point2> points, const MinimumZoneCircle& mz)
   if (mz.certificate.optimality != Optimality::global) return Verification{true, {}};
 
   // Global claim, derivation (4): crossing segments and distances to the other pair's line.
-  bool unique = orientation(o1, o2, i1) * orientation(o1, o2, i2) < 0 &&
-                orientation(i1, i2, o1) * orientation(i1, i2, o2) < 0;
+  const auto orient = [&](std::size_t a, std::size_t b, std::size_t k) {
+    return input_orientation(points[a], points[b], points[k]);
+  };
+  bool unique = orient(io1, io2, ii1) * orient(io1, io2, ii2) < 0 &&
+                orient(ii1, ii2, io1) * orient(ii1, ii2, io2) < 0;
   if (unique) {
     const std::array<std::array<const QPoint*, 3>, 4> tests{{{&o1, &o2, &i1},
                                                              {&o1, &o2, &i2},
                                                              {&i1, &i2, &o1},
                                                              {&i1, &i2, &o2}}};
     for (const auto& t : tests) {
-      const QPoint e = *t[1] - *t[0];
-      const Q cr = cross(e, *t[2] - *t[0]);
-      if (!exceeds_width_squared(cr * cr / norm2(e), zone.outer2, zone.inner2)) {
+      if (!exceeds_width_squared(*t[0], *t[1], *t[2], zone.outer2, zone.inner2)) {
         unique = false;
         break;
       }
@@ -860,9 +999,12 @@ Verification verify(std::span<const Point2> points, const MinimumCircumscribedCi
     const auto cc = equidistant_point(a, b, a, d);
     if (!cc) return fail(what, "the 3 contacts are collinear");
     c = *cc;
-    const int o = orientation(a, b, d);
-    if (orientation(a, b, c) * o < 0 || orientation(b, d, c) * o < 0 ||
-        orientation(d, a, c) * o < 0) {
+    const Point2 pa = points[idx[0]], pb = points[idx[1]], pd = points[idx[2]];
+    const FilteredCircle centre = filtered(c);
+    const int o = input_orientation(pa, pb, pd);
+    if (orientation_filtered(pa, pb, centre) * o < 0 ||
+        orientation_filtered(pb, pd, centre) * o < 0 ||
+        orientation_filtered(pd, pa, centre) * o < 0) {
       std::ostringstream os;
       os << "the centre lies outside the triangle of contacts " << idx[0] << ", " << idx[1]
          << ", " << idx[2] << " (a smaller circle exists)";
@@ -871,9 +1013,9 @@ Verification verify(std::span<const Point2> points, const MinimumCircumscribedCi
   }
   const Q r2 = norm2(a - c);
   const FilteredCircle fc = filtered(c);
-  const IA r2i = to_ia(r2);
+  const Threshold r2d = threshold(points[idx[0]], fc, r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, points[idx[0]], r2i) > 0)
+    if (compare_distance2(points[k], fc, r2d) > 0)
       return fail(what, index_name("point", k) + " lies outside the circle");
   }
   const double u = ulp_of(scale_of(c, r2));
@@ -1004,6 +1146,23 @@ std::optional<std::string> refute_global_inscribed(std::span<const Point2> point
   return std::nullopt;
 }
 
+/// The fast global test of verify_inscribed_cover.h for the MI circle about fc.c through the
+/// contacts t (r2 its squared radius, farthest2 the largest squared distance of a point).
+bool is_covered_by_disks(std::span<const Point2> points, const FilteredCircle& fc,
+                         const std::array<QPoint, 3>& t, const Q& r2, const Q& farthest2) {
+  // γ²: the squared distance from c to the nearest edge line of the contact triangle.
+  std::optional<Q> gamma2;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const QPoint e = t[(k + 1) % 3] - t[k];
+    const Q cr = cross(e, fc.c - t[k]);
+    const Q g = cr * cr / norm2(e);
+    if (!gamma2 || g < *gamma2) gamma2 = g;
+  }
+  const auto enclose = [](const Q& q) { return CGAL::to_interval(q); };
+  return internal::disks_cover_inscribed(
+      points, fc.approx, {enclose(r2), enclose(farthest2), enclose(farthest2 - r2), enclose(*gamma2)});
+}
+
 }  // namespace
 
 Verification verify(std::span<const Point2> points, const MaximumInscribedCircle& mi) {
@@ -1021,9 +1180,12 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
   const auto cc = equidistant_point(a, b, a, d);
   if (!cc) return fail(what, "the 3 contacts are collinear");
   const QPoint c = *cc;
-  const int o = orientation(a, b, d);
-  const std::array<int, 3> side{orientation(a, b, c) * o, orientation(b, d, c) * o,
-                                orientation(d, a, c) * o};
+  const FilteredCircle fc = filtered(c);
+  const Point2 pa = points[idx[0]], pb = points[idx[1]], pd = points[idx[2]];
+  const int o = input_orientation(pa, pb, pd);
+  const std::array<int, 3> side{orientation_filtered(pa, pb, fc) * o,
+                                orientation_filtered(pb, pd, fc) * o,
+                                orientation_filtered(pd, pa, fc) * o};
   if (side[0] < 0 || side[1] < 0 || side[2] < 0) {
     std::ostringstream os;
     os << "the centre is outside the triangle of contacts " << idx[0] << ", " << idx[1]
@@ -1031,10 +1193,9 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
     return fail(what, os.str());
   }
   const Q r2 = norm2(a - c);
-  const FilteredCircle fc = filtered(c);
-  const IA r2i = to_ia(r2);
+  const Threshold r2d = threshold(points[idx[0]], fc, r2);
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (compare_distance2(points[k], fc, points[idx[0]], r2i) < 0)
+    if (compare_distance2(points[k], fc, r2d) < 0)
       return fail(what, index_name("point", k) + " lies strictly inside the circle");
   }
   // Centre on an edge (then a diameter) of the contact triangle: a strict local maximum
@@ -1046,7 +1207,7 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
     const int third = orientation(to_q(p0), to_q(p1), to_q(points[idx[(e + 2) % 3]]));
     bool witness = false;
     for (std::size_t k = 0; k < points.size() && !witness; ++k) {
-      if (compare_distance2(points[k], fc, points[idx[0]], r2i) != 0) continue;
+      if (compare_distance2(points[k], fc, r2d) != 0) continue;
       witness = orientation(to_q(p0), to_q(p1), to_q(points[k])) == -third;
     }
     if (!witness) {
@@ -1069,6 +1230,9 @@ Verification verify(std::span<const Point2> points, const MaximumInscribedCircle
   if (auto e = check_zero("RONv", mi.ron.ronv, kParameterUlps * u)) return fail(what, *e);
   if (auto e = check_ronq(mi.ron, kParameterUlps * u)) return fail(what, *e);
   if (mi.certificate.optimality != Optimality::global) return Verification{true, {}};
+  // An O(n) sufficient test first (the disks of radius r about the points cover the disk of
+  // radius √farthest2 about c); what it cannot settle, the exhaustion decides.
+  if (is_covered_by_disks(points, fc, {a, b, d}, r2, farthest2)) return Verification{true, {}};
   if (auto e = refute_global_inscribed(points, r2))
     return fail(what, "global optimality claim is false: " + *e);
   return Verification{true, {}};

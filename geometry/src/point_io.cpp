@@ -2,10 +2,15 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <sstream>
+#include <string>
 #include <string_view>
+#include <system_error>
+#include <vector>
 
 #include "internal/csv_fields.h"
 
@@ -23,23 +28,54 @@ using internal::trim_blanks;
   throw InvalidInput(os.str());
 }
 
-}  // namespace
+/// The common line — 2 or 3 plain numbers separated by single commas, no blanks, no sign '+' —
+/// in one pass of std::from_chars. Returns the number of fields, or 0 to send the line to
+/// the general rules (which give the same values for every line accepted here: the same
+/// from_chars on the same, already trimmed, fields).
+std::size_t parse_plain_line(std::string_view s, double v[3]) {
+  const char* p = s.data();
+  const char* const end = s.data() + s.size();
+  for (std::size_t k = 0; k < 3; ++k) {
+    const char* next = internal::parse_short_decimal(p, end, v[k]);
+    if (next == nullptr) {
+      const auto [after, ec] = std::from_chars(p, end, v[k]);
+      if (ec != std::errc() || after == p || !std::isfinite(v[k])) return 0;
+      next = after;
+    }
+    if (next == end) return k >= 1 ? k + 1 : 0;
+    if (*next != ',') return 0;
+    p = next + 1;
+  }
+  return 0;
+}
 
-PointTable read_points_csv(std::istream& in, const std::string& source_name) {
+/// The rules of read_points_csv on a whole text (read at once: one pass, no stream per line).
+PointTable parse_points_csv(std::string_view text, const std::string& source_name) {
   PointTable table;
-  std::string raw;
+  // ~30 characters a line in practice; an estimate, not a limit.
+  table.points.reserve(text.size() / 24 + 1);
+  table.line.reserve(text.size() / 24 + 1);
   std::size_t line_no = 0;
   std::size_t columns = 0;  // fixed by the first data line
   bool seen_content = false;
-  while (std::getline(in, raw)) {
+  std::vector<std::string_view> fields;
+  internal::for_each_line(text, [&](std::string_view s) {
     ++line_no;
-    std::string_view s = raw;
     if (line_no == 1 && s.size() >= 3 && s.substr(0, 3) == "\xEF\xBB\xBF") s.remove_prefix(3);
     if (const auto hash = s.find('#'); hash != std::string_view::npos) s = s.substr(0, hash);
     s = trim_blanks(s);
-    if (s.empty()) continue;
-    const auto fields = split_csv_fields(s);
+    if (s.empty()) return;
     double v[3] = {0, 0, 0};
+    if (const std::size_t count = parse_plain_line(s, v);
+        count != 0 && (columns == 0 || count == columns)) {
+      seen_content = true;
+      if (columns == 0) columns = count;
+      table.points.push_back({v[0], v[1]});
+      if (columns == 3) table.z.push_back(v[2]);
+      table.line.push_back(line_no);
+      return;
+    }
+    split_csv_fields(s, fields);
     bool numeric = true;  // every field parses as a finite number
     std::size_t bad_field = 0;
     FieldStatus bad_status = FieldStatus::ok;
@@ -57,7 +93,7 @@ PointTable read_points_csv(std::istream& in, const std::string& source_name) {
       seen_content = true;
       // A first line with a field that is not a number is a header; numbers gone wrong
       // (nan/inf) or a wrong count of numbers are errors.
-      if (!numeric && bad_status == FieldStatus::not_a_number) continue;
+      if (!numeric && bad_status == FieldStatus::not_a_number) return;
     }
     if (fields.size() < 2 || fields.size() > 3) {
       fail(source_name, line_no,
@@ -81,17 +117,35 @@ PointTable read_points_csv(std::istream& in, const std::string& source_name) {
     table.points.push_back({v[0], v[1]});
     if (columns == 3) table.z.push_back(v[2]);
     table.line.push_back(line_no);
-  }
-  if (in.bad()) throw InvalidInput(source_name + ": read error");
+  });
   if (table.points.empty()) throw InvalidInput(source_name + ": no points (empty input)");
   return table;
 }
 
+}  // namespace
+
+PointTable read_points_csv(std::istream& in, const std::string& source_name) {
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0)
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+  if (in.bad()) throw InvalidInput(source_name + ": read error");
+  return parse_points_csv(text, source_name);
+}
+
 PointTable read_points_csv_file(const std::string& path) {
   if (path == "-") return read_points_csv(std::cin, "<stdin>");
-  std::ifstream f(path);
+  // One read of the whole file (C stdio: no stream construction or locale per call).
+  std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw InvalidInput(path + ": cannot open file for reading");
-  return read_points_csv(f, path);
+  std::string text;
+  char buf[1 << 16];
+  std::size_t got = 0;
+  while ((got = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, got);
+  const int error = std::ferror(f) ? errno : 0;
+  std::fclose(f);
+  if (error != 0) throw InvalidInput(path + ": read error (" + std::strerror(error) + ")");
+  return parse_points_csv(text, path);
 }
 
 }  // namespace vcmm::geometry

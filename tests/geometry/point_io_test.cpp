@@ -1,8 +1,14 @@
 // read_points_csv: formats accepted and every rejection with file and line in the message.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <charconv>
+#include <cstdint>
 #include <sstream>
+#include <string>
+#include <system_error>
 
+#include "../../geometry/src/internal/csv_fields.h"
 #include "vcmm/geometry/point_io.h"
 
 namespace {
@@ -80,3 +86,40 @@ TEST(ReadPointsCsv, MissingFileIsAClearError) {
 }
 
 }  // namespace
+
+// The reader's fast path for short plain decimals (internal/csv_fields.h, Clinger's fast
+// path) must give bit for bit what std::from_chars gives, and hand everything else over.
+TEST(PointIoFastPath, ShortDecimalsParseBitForBitLikeFromChars) {
+  namespace internal = vcmm::geometry::internal;
+  std::uint64_t state = 20261126;
+  auto next = [&state] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return state >> 33;
+  };
+  int accepted = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    std::string s;
+    if (next() % 4 == 0) s += '-';
+    const int int_digits = static_cast<int>(next() % 8);
+    const int frac_digits = static_cast<int>(next() % 12);
+    for (int k = 0; k < int_digits; ++k) s += static_cast<char>('0' + next() % 10);
+    if (next() % 8 != 0) s += '.';
+    for (int k = 0; k < frac_digits; ++k) s += static_cast<char>('0' + next() % 10);
+    if (next() % 16 == 0) s += "e3";
+    if (next() % 16 == 0) s += ",1";
+    double fast = 0.0, reference = 0.0;
+    const char* end = s.data() + s.size();
+    const char* p = internal::parse_short_decimal(s.data(), end, fast);
+    const auto [q, ec] = std::from_chars(s.data(), end, reference);
+    if (p == nullptr) continue;
+    ++accepted;
+    ASSERT_EQ(ec, std::errc()) << s;
+    ASSERT_EQ(p, q) << s;
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(fast), std::bit_cast<std::uint64_t>(reference)) << s;
+  }
+  EXPECT_GT(accepted, 100000);
+  double v = 0.0;
+  const std::string long_one = "0.1234567890123456";  // 16 digits: not for the fast path
+  EXPECT_EQ(internal::parse_short_decimal(long_one.data(), long_one.data() + long_one.size(), v),
+            nullptr);
+}

@@ -19,6 +19,8 @@
 
 #include "vcmm/characterization/hole_plate.h"
 #include "vcmm/errormodel/errors.h"
+#include "vcmm/errormodel/physical_ranges.h"
+#include "vcmm/geometry/text_lines.h"
 
 namespace vcmm::characterization {
 namespace {
@@ -111,7 +113,7 @@ std::vector<std::pair<std::size_t, std::string>> read_lines(std::istream& in) {
   std::vector<std::pair<std::size_t, std::string>> lines;
   std::string raw;
   std::size_t n = 0;
-  while (std::getline(in, raw)) {
+  while (geometry::read_text_line(in, raw)) {
     ++n;
     std::string_view t(raw);
     if (n == 1 && t.starts_with("\xEF\xBB\xBF")) t.remove_prefix(3);
@@ -326,7 +328,11 @@ HolePlate read_hole_plate_csv(std::istream& in, const std::string& source) {
     for (int k = 0; k < 4; ++k)
       v[k] = parse_number(fields[static_cast<std::size_t>(k + 1)], source, line,
                           "field " + std::to_string(k + 2) + " (" + names[k + 1] + ")");
-    if (v[3] < 0.0) fail(source, line, "field 5 (u_um) must be >= 0; got " + shortest(v[3]));
+    // A calibration uncertainty in its physical range (errormodel/physical_ranges.h).
+    if (const std::string problem =
+            em::range_problem(em::physical_range::length_sigma_um, v[3]);
+        !problem.empty())
+      fail(source, line, "field 5 (u_um) " + problem);
     plate.ids.emplace_back(fields[0]);
     xs.emplace_back(v[0], v[1], v[2]);
     plate.calibration_u_mm.push_back(v[3] * 1e-3);
@@ -398,11 +404,8 @@ HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::st
                                                 "stylus_offset_mm component " + std::to_string(k + 1));
         stylus = true;
       } else {  // setup or name
-        // A carriage return inside the value (a stray CR, not a CRLF ending, which is trimmed)
-        // would give a name no placement file can hold — the writer refuses it: refused here
-        // (found by the fuzz target hole_plate_placement_csv, docs/fuzzing.md).
-        if (value.find('\r') != std::string_view::npos)
-          fail(source, line, "metadata '" + key + "' contains a carriage return");
+        // No carriage return can be inside the value: a lone CR ends the line
+        // (geometry/text_lines.h; fuzz target hole_plate_placement_csv, docs/fuzzing.md).
         if (key == "setup") {
           pl.setup = std::string(value);
         } else {

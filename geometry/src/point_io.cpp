@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "internal/csv_fields.h"
+#include "vcmm/geometry/text_lines.h"
 
 namespace vcmm::geometry {
 namespace {
@@ -31,7 +32,7 @@ PointTable read_points_csv(std::istream& in, const std::string& source_name) {
   std::size_t line_no = 0;
   std::size_t columns = 0;  // fixed by the first data line
   bool seen_content = false;
-  while (std::getline(in, raw)) {
+  while (geometry::read_text_line(in, raw)) {
     ++line_no;
     std::string_view s = raw;
     if (line_no == 1 && s.size() >= 3 && s.substr(0, 3) == "\xEF\xBB\xBF") s.remove_prefix(3);
@@ -64,14 +65,10 @@ PointTable read_points_csv(std::istream& in, const std::string& source_name) {
            "expected 2 or 3 fields (x,y or x,y,z in mm), found " +
                std::to_string(fields.size()));
     }
-    if (!numeric) {
-      const std::string field(fields[bad_field]);
-      if (bad_status == FieldStatus::non_finite)
-        fail(source_name, line_no,
-             "field " + std::to_string(bad_field + 1) + " is not finite ('" + field + "')");
+    if (!numeric)
       fail(source_name, line_no,
-           "field " + std::to_string(bad_field + 1) + " is not a number ('" + field + "')");
-    }
+           "field " + std::to_string(bad_field + 1) + " " +
+               number_field_problem(bad_status, fields[bad_field]));
     if (columns == 0) columns = fields.size();
     if (fields.size() != columns) {
       fail(source_name, line_no,

@@ -132,7 +132,22 @@ constexpr std::pair<std::string_view, std::string_view> kOperations[] = {
     {"zeta_score", "zeta score"},
     {"write_measurement_csv_file", "measurement file"},
     {"estimate_kinematic_errors", "hole-plate fit"},
+    {"express_in_gauge", "hole-plate fit"},
+    {"kinematics_json_section", "kinematics section"},
+    {"error_function_value", "kinematic errors"},
+    {"correlation_matrix", "kinematics correlation"},
+    {"characterize_probe_sphere", "probe characterisation (sphere)"},
+    {"probe_section_json", "probe section"},
     {"repeated_scan_noise", "noise from a repeated scan"},
+    {"scanning_noise", "scanning noise"},
+    {"touch_trigger_noise", "touch-trigger noise"},
+    {"reference_deviation_mm", "reference profile"},
+    {"high_pass_noise_factor", "noise characterisation"},
+    {"sigma_coverage_factor", "noise characterisation"},
+    {"noise_section_json", "noise section"},
+    {"shrinkage_max_order", "shrinkage treatment"},
+    {"numerical_tolerance_from_digits", "adaptive Monte Carlo"},
+    {"standard_normal_quantile", "coverage factor"},
 };
 
 bool is_name_char(char c) {

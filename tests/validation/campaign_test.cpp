@@ -369,6 +369,15 @@ TEST_F(CampaignTest, WrongUnitsNameTheExpectedKey) {
   EXPECT_EQ(rule_of(doc), "measurements[0] (\"L1-O000-mid-scan\").setup.temperature_c: must lie "
                           "in [-50, 100] °C (a workpiece temperature in °C; kelvin given? 293.45 "
                           "K = 20.3 °C); got 293.45 °C");
+  doc["measurements"][0]["setup"]["temperature_c"] = 1e300;
+  EXPECT_EQ(rule_of(doc), "measurements[0] (\"L1-O000-mid-scan\").setup.temperature_c: must lie "
+                          "in [-50, 100] °C (a workpiece temperature in °C; kelvin or °F given?); "
+                          "got 1e+300 °C");
+  doc["measurements"][0]["setup"]["temperature_c"] = 20;
+  doc["measurements"][0]["setup"]["location_mm"] = {600, 1e300, 250};
+  EXPECT_EQ(rule_of(doc), "measurements[0] (\"L1-O000-mid-scan\").setup.location_mm[1]: must lie "
+                          "in [-1e+05, 1e+05] mm (a position in a CMM volume); got 1e+300 mm");
+  doc = example();
   doc["measurements"][0]["setup"]["temperature_c"] = -300;
   EXPECT_EQ(rule_of(doc), "measurements[0] (\"L1-O000-mid-scan\").setup.temperature_c: is below "
                           "absolute zero (-273.15 °C): not a temperature in °C; got -300 °C");

@@ -383,8 +383,14 @@ class Reader {
       if (!loc->is_array() || loc->size() != 3)
         fail(p, "must be an array of 3 numbers [x, y, z] (mm)", *loc);
       std::array<double, 3> xyz{};
-      for (std::size_t k = 0; k < 3; ++k)
-        xyz[k] = number((*loc)[k], p + "[" + std::to_string(k) + "]");
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::string pk = p + "[" + std::to_string(k) + "]";
+        xyz[k] = number((*loc)[k], pk);
+        if (const std::string problem =
+                errormodel::range_problem(errormodel::physical_range::coordinate_mm, xyz[k]);
+            !problem.empty())
+          fail(pk, problem);
+      }
       s.location_mm = xyz;
     }
     s.orientation_deg =

@@ -11,6 +11,7 @@
 
 #include "atomic_file.h"
 #include "commands.h"
+#include "option_values.h"
 #include "run_control.h"
 #include "vcmm/characterization/cmm_points_file.h"
 #include "vcmm/characterization/probe_sphere.h"
@@ -67,16 +68,16 @@ void add_characterize_sphere_command(CLI::App& characterize, int* exit_code) {
       ->required();
   cmd->add_option("--diameter-mm", opts->diameter_mm, "calibrated sphere diameter (mm)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(physical_value(errormodel::physical_range::diameter_mm, /*open_below=*/true));
   cmd->add_option("--u-diameter-um", opts->u_diameter_um,
                   "standard uncertainty of the calibrated diameter (um)")
       ->required()
-      ->check(CLI::NonNegativeNumber);
+      ->check(physical_value(errormodel::physical_range::length_sigma_um));
   cmd->add_option("--form-um", opts->form_um,
                   "form deviation of the sphere, peak-to-valley (um); a rectangular "
                   "contribution")
       ->default_val(0.0)
-      ->check(CLI::NonNegativeNumber);
+      ->check(physical_value(errormodel::physical_range::length_sigma_um));
   cmd->add_option("--orders", opts->orders,
                   "directional harmonic orders to estimate, comma-separated (1 is reported "
                   "as not identifiable)")

@@ -277,6 +277,7 @@ TEST(CliExitCodes, MiOfAHalfRingExits4InRoundnessAndUncertainty) {
   const CliRun r = run("roundness " + quoted(plain) + " --reference mi");
   EXPECT_EQ(r.exit_code, 4) << r.err;
   EXPECT_FALSE(has(r.out, "maximum_inscribed_circle")) << r.out;
+  EXPECT_TRUE(has(r.out, "partial arc")) << r.out;  // main: "coverage 0.00° … closed profile"
 }
 
 // ---- messages: no internal function names; campaign entries named ---------------------------

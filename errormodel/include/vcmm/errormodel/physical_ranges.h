@@ -53,6 +53,14 @@ inline constexpr PhysicalRange length_sigma_mm{0.0, 1.0, "mm", "a standard devia
 /// The value of a small length error (a tip radius error, a probe harmonic amplitude).
 inline constexpr PhysicalRange length_error_um{-1000.0, 1000.0, "µm", "a probe error"};
 
+/// A coefficient of a kinematic error function (Legendre, docs/kinematics.md): residual errors
+/// of a CMM are µm and µrad; 1 mm and 10 mrad are far beyond any machine still in use.
+inline constexpr PhysicalRange kinematic_error_um{-1000.0, 1000.0, "µm",
+                                                  "a kinematic error coefficient"};
+inline constexpr PhysicalRange kinematic_rotation_urad{-1e4, 1e4, "µrad",
+                                                       "a rotation or squareness error"};
+inline constexpr PhysicalRange rotation_u_urad{0.0, 1e4, "µrad", "a standard uncertainty"};
+
 /// A coordinate or offset in a CMM volume (mm): the largest CMMs travel ~10 m.
 inline constexpr PhysicalRange coordinate_mm{-1e5, 1e5, "mm", "a position in a CMM volume"};
 

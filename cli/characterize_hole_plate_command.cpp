@@ -2,7 +2,7 @@
 //        --probing-sigma-um S (--axis-range X=MIN,MAX --axis-range Y=… --axis-range Z=… |
 //        --model MODEL.json) [--chain moving_bridge] [--degree N] [--degree-of E_XX=N ...]
 //        [--rank-tolerance T] [--prior-um U] [--prior-urad U] -o kinematics.json
-//        [--json REPORT.json]`
+//        [--json REPORT.json] [--accept-inconsistent]`
 // Kinematic errors from a calibrated hole/ball plate measured in several placements: writes the
 // digital model's "kinematics" section ({"kinematics": {...}}, atomically) and prints the report
 // (characterization/hole_plate.h, docs/characterization.md "Hole plate: kinematic errors",
@@ -24,6 +24,7 @@
 #include "option_values.h"
 #include "run_control.h"
 #include "vcmm/characterization/hole_plate.h"
+#include "vcmm/characterization/identical_inputs.h"
 #include "vcmm/errormodel/digital_model.h"
 
 namespace vcmm::cli {
@@ -44,9 +45,16 @@ struct HolePlateOptions {
   double rank_tolerance = 1e-3;
   double prior_um = 1.0;
   double prior_urad = 1.0;
+  bool accept_inconsistent = false;
   std::string output;
   std::string report;
 };
+
+// Physical ranges of the options (µm, µrad): a feature centre's repeatability on a CMM is
+// 0.01–10 µm; an a-priori u of a kinematic error beyond 1 mm or 1 mrad is no CMM.
+constexpr double kMaxProbingSigmaUm = 1000.0;
+constexpr double kMaxPriorUm = 1000.0;
+constexpr double kMaxPriorUrad = 1000.0;
 
 double parse_double(const std::string& text, const std::string& what) {
   double v = 0.0;
@@ -75,6 +83,12 @@ std::pair<int, em::AxisRange> parse_axis_range(const std::string& text) {
   if (!(r.min < r.max))
     throw std::invalid_argument("--axis-range " + axis + ": needs MIN < MAX; got '" + text + "'");
   return {k, r};
+}
+
+std::string shown(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
 }
 
 em::KinematicChain chain_from_name(const std::string& name) {
@@ -148,8 +162,17 @@ int run_hole_plate(const HolePlateOptions& o) {
     }
     if (o.model.empty() && ranges.size() != 3)
       throw std::invalid_argument("give --axis-range for X, Y and Z (or --model MODEL.json)");
-    if (!std::isfinite(o.probing_sigma_um) || !(o.probing_sigma_um > 0.0))
-      throw std::invalid_argument("--probing-sigma-um must be a finite number > 0");
+    if (!std::isfinite(o.probing_sigma_um) || !(o.probing_sigma_um > 0.0) ||
+        o.probing_sigma_um > kMaxProbingSigmaUm)
+      throw std::invalid_argument("--probing-sigma-um must be a number of um in (0, 1000] "
+                                  "(the repeatability of a feature centre); got " +
+                                  shown(o.probing_sigma_um) + " um");
+    if (!(o.prior_um >= 0.0 && o.prior_um <= kMaxPriorUm))
+      throw std::invalid_argument("--prior-um must be a number of um in [0, 1000]; got " +
+                                  shown(o.prior_um) + " um");
+    if (!(o.prior_urad >= 0.0 && o.prior_urad <= kMaxPriorUrad))
+      throw std::invalid_argument("--prior-urad must be a number of urad in [0, 1000]; got " +
+                                  shown(o.prior_urad) + " urad");
   } catch (const std::invalid_argument& ex) {
     std::cerr << kName << ": error: " << ex.what() << "\n";
     return kUsage;
@@ -174,6 +197,9 @@ int run_hole_plate(const HolePlateOptions& o) {
     options.unidentified_translation_u_mm = o.prior_um * 1e-3;
     options.unidentified_rotation_u_rad = o.prior_urad * 1e-6;
 
+    std::vector<ch::InputFile> inputs{{"--plate", o.plate}};
+    for (const std::string& p : o.placements) inputs.push_back({"--placement", p});
+    ch::refuse_identical_inputs(inputs);
     const ch::HolePlate plate = ch::read_hole_plate_csv_file(o.plate);
     std::vector<ch::HolePlatePlacement> placements;
     for (const std::string& p : o.placements)
@@ -186,11 +212,27 @@ int run_hole_plate(const HolePlateOptions& o) {
     }
     std::string source = "hole plate " + o.plate + "; placements";
     for (const std::string& p : o.placements) source += " " + p;
+    const bool inconsistent = !r.consistency.passed();
+    if (inconsistent && !o.accept_inconsistent) {
+      std::cerr << kName << ": error: the calibration data are inconsistent with "
+                << "--probing-sigma-um " << o.probing_sigma_um << " um and the plate's u (" << o.plate
+                << "): " << r.consistency.summary()
+                << "; check the named file (a blunder, a wrong '# setup:' label, a wrong "
+                   "stylus offset) or, if sigma is too small, state it; --accept-inconsistent "
+                   "writes the model anyway and records this; nothing written\n";
+      return kInvalidInput;
+    }
+    if (inconsistent) {
+      std::cerr << kName << ": warning: accepted although inconsistent (--accept-inconsistent): "
+                << r.consistency.summary() << "\n";
+      source += "; ACCEPTED ALTHOUGH INCONSISTENT (--accept-inconsistent): " + r.consistency.summary();
+    }
     nlohmann::ordered_json out = nlohmann::ordered_json::object();
     out["kinematics"] = nlohmann::ordered_json::parse(ch::kinematics_json_section(r, source));
     OutputTransaction outputs;  // the model section and the report together or not at all
     outputs.stage(o.output, out.dump(2) + "\n");
-    if (!o.report.empty()) outputs.stage(o.report, ch::hole_plate_report_json(r) + "\n");
+    if (!o.report.empty())
+      outputs.stage(o.report, ch::hole_plate_report_json(r, o.accept_inconsistent) + "\n");
     outputs.commit();
     std::cout << kName << ": wrote " << o.output << (o.report.empty() ? "" : " and " + o.report)
               << "\n";
@@ -244,6 +286,9 @@ void add_characterize_hole_plate_command(CLI::App& characterize, int* exit_code)
                   "output JSON {\"kinematics\": {...}} (written atomically)")
       ->required();
   cmd->add_option("--json", opts->report, "also write the diagnostics report as JSON here");
+  cmd->add_flag("--accept-inconsistent", opts->accept_inconsistent,
+                "write the model even when the residuals fail the consistency test (chi2 or an "
+                "outlier at the 1 % level); the verdict is recorded in the output");
   cmd->callback([opts, exit_code] { *exit_code = run_hole_plate(*opts); });
 }
 

@@ -1,6 +1,7 @@
 // `vcmm characterize noise --reference PROFILE.csv [--scan S.csv [--scan-repeat S2.csv]]
 //                          [--touch T.csv] [--cutoff-upr 50] [--phase-deg P]
-//                          [--no-scan-systematics] [--model MODEL.json] -o noise.json`
+//                          [--no-scan-systematics] [--model MODEL.json]
+//                          [--accept-inconsistent] -o noise.json`
 // Noise σ by probing mode (and roughness from a repeated scan) from CMM profiles of a
 // calibrated artefact and its reference profile: writes the model's "noise" (and "roughness")
 // sections with a diagnostics block (characterization/noise.h, docs/characterization.md
@@ -17,6 +18,7 @@
 #include "commands.h"
 #include "run_control.h"
 #include "vcmm/characterization/cmm_points_file.h"
+#include "vcmm/characterization/identical_inputs.h"
 #include "vcmm/characterization/noise.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/errors.h"
@@ -36,6 +38,7 @@ struct NoiseOptions {
   std::optional<double> phase_deg;
   bool no_scan_systematics = false;
   std::string model;
+  bool accept_inconsistent = false;
   std::string output;
 };
 
@@ -55,6 +58,12 @@ std::vector<geometry::Point2> read_profile(const std::string& path, em::ProbingM
 int run_noise(const NoiseOptions& o) {
   constexpr const char* kName = "vcmm characterize noise";
   try {
+    // A scan given twice (as --scan and --scan-repeat, or as --touch) is no second measurement.
+    std::vector<ch::InputFile> inputs{{"--reference", o.reference}};
+    if (!o.scan.empty()) inputs.push_back({"--scan", o.scan});
+    if (!o.scan_repeat.empty()) inputs.push_back({"--scan-repeat", o.scan_repeat});
+    if (!o.touch.empty()) inputs.push_back({"--touch", o.touch});
+    ch::refuse_identical_inputs(inputs);
     const ch::ReferenceProfile reference = ch::read_reference_profile_csv_file(o.reference);
     std::optional<double> fallback_scan, fallback_touch;
     if (!o.model.empty()) {
@@ -106,8 +115,32 @@ int run_noise(const NoiseOptions& o) {
       c.touch = ch::touch_trigger_noise(read_profile(o.touch, em::ProbingMode::touch_trigger),
                                         reference, phase, systematics);
     }
-    write_file_atomically(o.output,
-                          ch::noise_characterization_json(c, fallback_scan, fallback_touch));
+    // Outliers in any data set refuse the calibration (or are recorded with
+    // --accept-inconsistent), naming the file and the point.
+    std::vector<std::pair<std::string, const ch::ConsistencyTest*>> tests;
+    if (c.scan) tests.emplace_back("--scan " + o.scan, &c.scan->consistency);
+    if (c.repeated) {
+      tests.emplace_back("--scan " + o.scan, &c.repeated->first.consistency);
+      tests.emplace_back("the difference of --scan " + o.scan + " and --scan-repeat " + o.scan_repeat,
+                         &c.repeated->difference_consistency);
+    }
+    if (c.touch) tests.emplace_back("--touch " + o.touch, &c.touch->consistency);
+    bool inconsistent = false;
+    for (const auto& [what, t] : tests) {
+      if (t->passed()) continue;
+      inconsistent = true;
+      std::cerr << kName << ": " << (o.accept_inconsistent ? "warning" : "error") << ": " << what
+                << ": " << t->summary() << "\n";
+    }
+    if (inconsistent && !o.accept_inconsistent) {
+      std::cerr << kName << ": error: a point far outside the noise of the others (dirt, a probe "
+                   "bounce, a wrong file) would become noise in the model; check the named point; "
+                   "--accept-inconsistent writes the result anyway and records this; nothing "
+                   "written\n";
+      return kInvalidInput;
+    }
+    write_file_atomically(o.output, ch::noise_characterization_json(c, fallback_scan, fallback_touch,
+                                                                    o.accept_inconsistent));
     auto um = [](double mm) { return mm * 1e3; };
     std::cout << kName << ":";
     if (c.repeated)
@@ -153,8 +186,7 @@ void add_characterize_noise_command(CLI::App& characterize, int* exit_code) {
       cmd->add_option("--touch", opts->touch, "touch-trigger points on the same artefact");
   cmd->add_option("--cutoff-upr", opts->cutoff_upr,
                   "Gaussian low-pass cut-off separating systematic from random (UPR)")
-      ->default_val(50.0)
-      ->check(CLI::PositiveNumber);
+      ->default_val(50.0);
   cmd->add_option("--phase-deg", opts->phase_deg,
                   "machine angle (about the profile centre, from +X) of the reference's 0 "
                   "degrees; default: estimated from the scan");
@@ -163,6 +195,9 @@ void add_characterize_noise_command(CLI::App& characterize, int* exit_code) {
                 "points (then the touch sigma includes the CMM's systematic errors)");
   cmd->add_option("--model", opts->model,
                   "current digital model: supplies the sigma of a mode without data");
+  cmd->add_flag("--accept-inconsistent", opts->accept_inconsistent,
+                "write the result even when a data set has an outlier (studentized, 1 % "
+                "overall); the verdict is recorded in the output");
   cmd->add_option("-o,--output", opts->output, "output JSON (written atomically)")->required();
   cmd->callback([opts, exit_code, scan, touch] {
     if (scan->count() == 0 && touch->count() == 0) {
@@ -170,9 +205,20 @@ void add_characterize_noise_command(CLI::App& characterize, int* exit_code) {
       *exit_code = kUsage;
       return;
     }
-    if (!std::isfinite(opts->cutoff_upr) || (opts->phase_deg && !std::isfinite(*opts->phase_deg))) {
-      std::cerr << "vcmm characterize noise: error: --cutoff-upr and --phase-deg must be "
-                   "finite numbers\n";
+    // Physical ranges: roundness cut-offs are 15–1500 UPR (ISO 12181-2); below 1 UPR the
+    // filter keeps nothing but the circle, above 1e5 no scan resolves it. An angle is given
+    // within one turn either way.
+    if (!(opts->cutoff_upr >= 1.0 && opts->cutoff_upr <= 1e5)) {
+      std::cerr << "vcmm characterize noise: error: --cutoff-upr must be a cut-off in UPR in "
+                   "[1, 100000] (and at most half the scan's points); got "
+                << opts->cutoff_upr << " UPR\n";
+      *exit_code = kUsage;
+      return;
+    }
+    if (opts->phase_deg && !(std::abs(*opts->phase_deg) <= 360.0)) {
+      std::cerr << "vcmm characterize noise: error: --phase-deg must be an angle in degrees in "
+                   "[-360, 360]; got "
+                << *opts->phase_deg << " deg\n";
       *exit_code = kUsage;
       return;
     }

@@ -1,6 +1,7 @@
 // `vcmm uncertainty --model MODEL.json --points MEASURED.csv [--trials M | --adaptive TOL_UM]
 //                   [--seed S] [--threads T] [--reference MZ|MI|LS|MC] [--filter-upr N|none]
 //                   [--bias-treatment shrinkage|paper] [--pilot-trials N] [--surrogate-trials N]
+//                   [--budget [--budget-trials N]]
 //                   [--json] [-o OUT] [--samples OUT.csv] [--progress auto|always|never]`
 // Monte Carlo uncertainty (JCGM 101) of the diameter and roundness of one ring measurement,
 // with the bias and the bias-corrected estimates: the roundness by the shrinkage treatment
@@ -49,6 +50,8 @@ struct UncertaintyOptions {
   std::string mode, location, stylus_offset, frame = "machine", surface = "inner";
   std::optional<double> temperature_c, orientation_deg, radius_mm;
   double height_mm = 0.0;
+  bool budget = false;            // per-source uncertainty budget (ring_uncertainty_budget.h)
+  std::uint64_t budget_trials = 0;  // 0: the main run's trials
 };
 
 /// The metadata options as the library's MeasurementSetup; std::invalid_argument (exit 2)
@@ -97,6 +100,7 @@ int run_uncertainty(const UncertaintyOptions& o) {
     options.shrinkage.pilot_trials = o.pilot_trials;
     options.shrinkage.surrogate_trials = o.surrogate_trials;
     setup = measurement_setup(o);
+    if (o.budget) options.budget = va::BudgetOptions{o.budget_trials};
   } catch (const std::invalid_argument& ex) {
     std::cerr << "vcmm uncertainty: error: " << ex.what() << "\n";
     return kUsage;
@@ -224,6 +228,13 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
                   "many as --trials")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{100'000'000}))
       ->default_val(va::ShrinkageOptions{}.surrogate_trials);
+  auto* budget = cmd->add_flag("--budget", opts->budget,
+                "also the uncertainty budget: each error source alone on the same random numbers "
+                "(one more run per source; docs/validation.md)");
+  cmd->add_option("--budget-trials", opts->budget_trials,
+                  "trials of each budget run (default and at most: the main run's)")
+      ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}))
+      ->needs(budget);
   cmd->add_flag("--json", opts->json, "print JSON instead of the table");
   cmd->add_option("-o,--output", opts->output, "write the report to this file (atomically)");
   cmd->add_option("--samples", opts->samples,

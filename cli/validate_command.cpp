@@ -57,7 +57,9 @@ struct CampaignCliOptions {
 void print_summary(const va::CampaignOutcome& o, const std::string& out_dir) {
   std::printf("\n%zu measurements (%zu computed, %zu resumed) in %.1f s; tables in %s\n",
               o.measurements.size(), o.computed, o.resumed, o.wall_seconds, out_dir.c_str());
-  std::printf("\nE_n over all measurements (honest uncertainties: mean ~0, RMS ~0.5, "
+  std::printf("\nE_n = (reference - measured) / (k sqrt(u_ref^2 + u^2)), k = 2 (the seed study's "
+              "sign: E_n > 0 when the measured value is below the reference)\n");
+  std::printf("E_n over all measurements (honest uncertainties: mean ~0, RMS ~0.5, "
               "95.4 %% within +-1)\n");
   std::printf("  %-10s %-12s %4s %10s %9s %8s\n", "measurand", "treatment", "n", "|En|<=1",
               "mean En", "RMS En");

@@ -9,7 +9,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   librandom123-dev
-  python3 python3-matplotlib python3-numpy
+  python3 python3-dev python3-matplotlib python3-numpy python3-pytest pybind11-dev
 )
 
 missing=()

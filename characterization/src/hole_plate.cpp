@@ -126,6 +126,10 @@ constexpr double kStepTolerance = 1e-7;
 // check of the nuisance columns.
 constexpr double kCollinear = 1e-6;
 
+// A measured centre farther than this from the rigid fit of its setup is a blunder
+// (check_gross_errors): the physical range of a CMM's kinematic errors.
+constexpr double kGrossErrorMm = 1.0;
+
 [[noreturn]] void fail(const std::string& msg) { throw InvalidInput(msg); }
 
 std::string num(double v) {
@@ -523,6 +527,113 @@ RigidPose rigid_fit(const Eigen::Matrix3Xd& c, const Eigen::Matrix3Xd& p) {
   return pose;
 }
 
+std::string placement_label(const HolePlatePlacement& pl, std::size_t j) {
+  if (!pl.source.empty()) return pl.source;
+  return pl.name.empty() ? std::to_string(j) : pl.name;
+}
+
+// "line 14, hole R3C2, y" (the line when the data came from a file).
+std::string feature_label(const std::vector<std::size_t>& lines, std::size_t a,
+                          const std::string& id, int coordinate, const char* what) {
+  std::string s;
+  if (a < lines.size()) s = "line " + std::to_string(lines[a]) + ", ";
+  s += what;
+  s += " ";
+  s += id;
+  s += ", ";
+  s += "xyz"[coordinate];
+  return s;
+}
+
+// The residuals of the weighted fit (rows of `assemble`: observations, then the calibration's
+// pseudo-observations) against their stated uncertainties, with the leverages of `j`.
+ConsistencyTest residual_consistency(const Layout& lay, std::span<const HolePlatePlacement> placements,
+                                     const Eigen::MatrixXd& j, const Eigen::VectorXd& r, Index dof) {
+  const Eigen::VectorXd h = leverages(j);
+  std::vector<FitResidual> res(static_cast<std::size_t>(r.size()));
+  for (std::size_t jj = 0; jj < lay.placements.size(); ++jj) {
+    const PlacementData& pd = lay.placements[jj];
+    const HolePlatePlacement& pl = placements[jj];
+    const std::string group = placement_label(pl, jj);
+    for (std::size_t a = 0; a < pd.features.size(); ++a) {
+      for (int k = 0; k < 3; ++k) {
+        const Index row = pd.first_row + 3 * static_cast<Index>(a) + k;
+        FitResidual& f = res[static_cast<std::size_t>(row)];
+        f.value = r[row] * lay.sigma;
+        f.uncertainty = lay.sigma;
+        f.leverage = h[row];
+        f.group = group;
+        f.where = feature_label(pl.lines, a, pl.ids[a], k, "hole");
+      }
+    }
+  }
+  const HolePlate& plate = *lay.plate;
+  const std::string plate_group = plate.source.empty() ? "the plate calibration" : plate.source;
+  for (Index i = 0; i < plate.calibrated_mm.cols(); ++i) {
+    const Index dcc = lay.dc_column[static_cast<std::size_t>(i)];
+    if (dcc < 0) continue;
+    const double u = plate.calibration_u_mm[static_cast<std::size_t>(i)];
+    for (int k = 0; k < 3; ++k) {
+      const Index row = lay.observation_rows + dcc + k;
+      FitResidual& f = res[static_cast<std::size_t>(row)];
+      f.value = r[row] * u;
+      f.uncertainty = u;
+      f.leverage = h[row];
+      f.group = plate_group;
+      f.where = feature_label(plate.lines, static_cast<std::size_t>(i),
+                              plate.ids[static_cast<std::size_t>(i)], k,
+                              "calibrated centre of hole");
+    }
+  }
+  return test_consistency(res, static_cast<double>(std::max<Index>(dof, 0)));
+}
+
+// Gross errors before the fit: every centre of setup s must lie within kGrossErrorMm of where
+// the setup's rigid fit puts it. Kinematic errors beyond 1 mm are outside the physical range of
+// a CMM (the kinematics section refuses them too), so a larger deviation is a blunder in a
+// centre, a wrong '# setup:' label or stylus offset — named here, before the first-order model
+// is evaluated at positions it does not describe.
+void check_gross_errors(const Layout& lay, std::span<const HolePlatePlacement> placements, Index s,
+                        const std::string& setup, const RigidPose& pose) {
+  double worst = 0.0, worst_rms = 0.0;
+  std::size_t worst_placement = 0, worst_feature = 0;
+  std::string files;
+  for (std::size_t jj = 0; jj < lay.placements.size(); ++jj) {
+    const PlacementData& pd = lay.placements[jj];
+    if (pd.setup != s) continue;
+    files += (files.empty() ? "" : ", ") + placement_label(placements[jj], jj);
+    double sum2 = 0.0, local_worst = 0.0;
+    std::size_t local_feature = 0;
+    for (std::size_t a = 0; a < pd.features.size(); ++a) {
+      const Eigen::Vector3d d = pd.measured.col(static_cast<Index>(a)) -
+                                (pose.rotation * lay.plate->calibrated_mm.col(pd.features[a]) +
+                                 pose.translation_mm);
+      sum2 += d.squaredNorm();
+      if (d.norm() > local_worst) {
+        local_worst = d.norm();
+        local_feature = a;
+      }
+    }
+    const double rms = std::sqrt(sum2 / static_cast<double>(pd.features.size()));
+    if (rms > worst_rms || (rms == worst_rms && local_worst > worst)) {
+      worst_rms = rms;
+      worst = local_worst;
+      worst_placement = jj;
+      worst_feature = local_feature;
+    }
+  }
+  if (!(worst > kGrossErrorMm)) return;
+  const HolePlatePlacement& pl = placements[worst_placement];
+  std::string at = "hole " + pl.ids[worst_feature];
+  if (worst_feature < pl.lines.size()) at = "line " + std::to_string(pl.lines[worst_feature]) + ", " + at;
+  fail("placement " + placement_label(pl, worst_placement) + " (setup '" + setup +
+       "', with " + files + "): the measured centres do not fit one rigid position of the plate: "
+       "RMS " + num(worst_rms) + " mm, largest " + num(worst) + " mm at " + at +
+       "; a CMM's kinematic errors are below " + num(kGrossErrorMm) +
+       " mm — a blunder in that centre (or in the plate's calibrated centre of that hole), a "
+       "wrong '# setup:' label or a wrong stylus offset");
+}
+
 void validate_options(const HolePlateFitOptions& o) {
   const char* c = "estimate_kinematic_errors";
   try {
@@ -700,6 +811,13 @@ KinematicCharacterization estimate_kinematic_errors(std::span<const HolePlatePla
   }
   lay.observation_rows = row;
   lay.setups = static_cast<Index>(setup_names.size());
+  // One measurement given twice (a copied file) would look like a perfectly repeatable machine.
+  for (std::size_t j = 0; j < placements.size(); ++j)
+    for (std::size_t i = 0; i < j; ++i)
+      if (placements[i].ids == placements[j].ids && placements[i].measured_mm == placements[j].measured_mm)
+        fail(std::string(caller) + ": placements '" + placement_label(placements[i], i) + "' and '" +
+             placement_label(placements[j], j) +
+             "' hold identical measured centres: one measurement given twice");
 
   // 2. Starting poses: rigid fit per setup; collinearity check.
   const Index F = plate.calibrated_mm.cols();
@@ -734,6 +852,7 @@ KinematicCharacterization estimate_kinematic_errors(std::span<const HolePlatePla
       pm.col(static_cast<Index>(a)) = ps[a];
     }
     const RigidPose pose = rigid_fit(cm, pm);
+    check_gross_errors(lay, placements, s, setup_names[static_cast<std::size_t>(s)], pose);
     state.rotation.push_back(pose.rotation);
     state.translation.push_back(pose.translation_mm);
   }
@@ -858,6 +977,7 @@ KinematicCharacterization estimate_kinematic_errors(std::span<const HolePlatePla
   assemble(lay, state, free_params, j, r);
   const Index rows = j.rows(), cols = j.cols();
   const Index dof = rows - cols;
+  const ConsistencyTest consistency = residual_consistency(lay, placements, j, r, dof);
   const double wss = r.squaredNorm();
   const double s02 = dof > 0 ? wss / static_cast<double>(dof) : 1.0;
   const Eigen::VectorXd cscale = unit_column_scale(j);
@@ -1008,6 +1128,8 @@ KinematicCharacterization estimate_kinematic_errors(std::span<const HolePlatePla
          num(s02) + (dof > 0 ? "" : " (no redundancy: not estimated)") +
          (result.covariance_scaled ? " (covariance scaled by it)" : "");
   if (!covariance_ok) msg += "; covariance unusable: " + covariance_problem;
+  msg += "; consistency: " + consistency.summary();
+  result.consistency = consistency;
   result.message = msg;
   result.usable = converged && covariance_ok;
   return result;

@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "output_checks.h"
 #include "vcmm/characterization/hole_plate.h"
 #include "vcmm/errormodel/errors.h"
 #include "vcmm/errormodel/physical_ranges.h"
@@ -292,6 +293,7 @@ std::string status_comment(const KinematicCharacterization& r, Index first, Inde
 
 HolePlate read_hole_plate_csv(std::istream& in, const std::string& source) {
   HolePlate plate;
+  plate.source = source;
   bool header = false, format_seen = false;
   std::size_t last_line = 0;
   std::map<std::string, std::size_t> seen;
@@ -328,12 +330,14 @@ HolePlate read_hole_plate_csv(std::istream& in, const std::string& source) {
     for (int k = 0; k < 4; ++k)
       v[k] = parse_number(fields[static_cast<std::size_t>(k + 1)], source, line,
                           "field " + std::to_string(k + 2) + " (" + names[k + 1] + ")");
-    // A calibration uncertainty in its physical range (errormodel/physical_ranges.h).
+    // A calibration uncertainty in its physical range (errormodel/physical_ranges.h): a plate
+    // is calibrated to ~0.1–5 µm; 1 mm is no calibration (1e300 would make every weight 0).
     if (const std::string problem =
             em::range_problem(em::physical_range::length_sigma_um, v[3]);
         !problem.empty())
       fail(source, line, "field 5 (u_um) " + problem);
     plate.ids.emplace_back(fields[0]);
+    plate.lines.push_back(line);
     xs.emplace_back(v[0], v[1], v[2]);
     plate.calibration_u_mm.push_back(v[3] * 1e-3);
   }
@@ -374,6 +378,7 @@ std::string hole_plate_csv(const HolePlate& plate, std::span<const std::string> 
 HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::string& source) {
   HolePlatePlacement pl;
   pl.name = source;
+  pl.source = source;
   bool header = false, stylus = false;
   std::map<std::string, std::size_t> meta_seen, seen;
   std::vector<Eigen::Vector3d> xs;
@@ -434,6 +439,7 @@ HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::st
       x[k] = parse_number(fields[static_cast<std::size_t>(k + 1)], source, line,
                           "field " + std::to_string(k + 2) + " (" + names[k] + ")");
     pl.ids.emplace_back(fields[0]);
+    pl.lines.push_back(line);
     xs.push_back(x);
   }
   if (!header)
@@ -483,6 +489,7 @@ std::string kinematics_json(const em::KinematicModel& model, std::string_view co
   const ojson body = section_json(model, [](int) { return std::string(); },
                                   [](int) { return std::string(); });
   for (auto it = body.begin(); it != body.end(); ++it) sec[it.key()] = it.value();
+  internal::require_finite_numbers(sec, "the kinematic model", "kinematics");
   return sec.dump(2);
 }
 
@@ -490,6 +497,22 @@ std::string kinematics_json_section(const KinematicCharacterization& r, std::str
   if (!r.usable)
     throw InvalidInput("kinematics_json_section: the characterisation is not usable (" +
                        r.message + ")");
+  // Physical range of a CMM's kinematic errors: a coefficient or its uncertainty beyond 1 mm
+  // (translations) or 1 mrad (rotations, squareness) is no machine error but a blunder in the
+  // data (µm and µrad are the scale; docs/characterization.md, "Consistency").
+  for (const KinematicParameter& p : r.parameters) {
+    const double limit = p.rotation ? 1e-3 : 1.0;
+    const double unit = unit_of(p.rotation);
+    for (const double v : {p.value, p.standard_uncertainty})
+      if (!(std::abs(v) <= limit))
+        throw InvalidInput("the estimated " + p.name + " (value " + shortest(p.value / unit) +
+                           ", uncertainty " + shortest(p.standard_uncertainty / unit) +
+                           (p.rotation ? " urad" : " um") + ") is outside the physical range of a "
+                           "CMM's kinematic error (|value| and u at most " +
+                           (p.rotation ? std::string("1000 urad") : std::string("1000 um")) +
+                           "): computed from " + std::string(source) +
+                           " — a blunder in these files or wrong units; nothing written");
+  }
   const em::KinematicModel& m = r.model;
   std::string summary =
       "Estimated from a calibrated hole plate (vcmm characterize hole-plate, "
@@ -528,10 +551,11 @@ std::string kinematics_json_section(const KinematicCharacterization& r, std::str
         return status_comment(r, m.parameter_offset(static_cast<em::Squareness>(s)), 1, true);
       });
   for (auto it = body.begin(); it != body.end(); ++it) sec[it.key()] = it.value();
+  internal::require_finite_numbers(sec, source, "kinematics");
   return sec.dump(2);
 }
 
-std::string hole_plate_report_json(const KinematicCharacterization& r) {
+std::string hole_plate_report_json(const KinematicCharacterization& r, bool accepted_inconsistent) {
   ojson j = ojson::object();
   j["status"] = std::string(to_string(r.status));
   j["usable"] = r.usable;
@@ -592,6 +616,8 @@ std::string hole_plate_report_json(const KinematicCharacterization& r) {
                    {"max_abs_residual_um", p.residuals_mm.size() > 0 ? p.residuals_mm.cwiseAbs().maxCoeff() * 1e3 : 0.0}});
   }
   j["placements"] = pls;
+  j["consistency"] = internal::consistency_json<ojson>(r.consistency, accepted_inconsistent);
+  internal::require_finite_numbers(j, "the hole-plate report");
   return j.dump(2);
 }
 

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "output_checks.h"
 #include "vcmm/errormodel/errors.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
@@ -57,6 +58,24 @@ void check_equiangular(const ReferenceProfile& p, const std::string& prefix) {
                          number(expected * 180.0 / kPi) + " deg");
   }
 }
+
+// The largest reference deviation accepted (mm): a roundness instrument's gauge range is about
+// ±1 mm, and a calibrated ring's form is a few µm; 1e300 µm (a corrupt file) would overflow
+// every square downstream.
+constexpr double kMaxReferenceDeviationMm = 1.0;
+
+void check_reference_range(const ReferenceProfile& p, const std::string& prefix) {
+  for (std::size_t j = 0; j < p.deviation_mm.size(); ++j)
+    if (!(std::abs(p.deviation_mm[j]) <= kMaxReferenceDeviationMm))
+      throw InvalidInput(prefix + geometry::profile_sample_location(p, j) + ": the deviation " +
+                         number(p.deviation_mm[j] * kUmPerMm) +
+                         " um lies outside a roundness instrument's range (at most 1000 um "
+                         "from the mean radius; mm given as um?)");
+}
+
+// The largest noise σ written (mm): a CMM's probing noise is 0.01–10 µm; 1 mm is no noise but
+// the wrong artefact, reference or units.
+constexpr double kMaxNoiseSigmaMm = 1.0;
 
 /// Fourier coefficients a_k, b_k (k = 2 … K) of the reference about α_0.
 struct ReferenceSeries {
@@ -272,6 +291,34 @@ double high_pass_sum_squares(const std::vector<double>& d, double cutoff,
   return s;
 }
 
+// The outlier test of residuals r_i with one variance per point (known up to the scale they
+// determine themselves): studentized, Bonferroni over the points at kNoiseOutlierLevel
+// (consistency.h). `sd` is the per-point standard deviation the residuals imply (only ratios
+// matter; it makes the reported u a length), `leverage` empty for 0.
+ConsistencyTest residual_outliers(const std::vector<double>& r, const std::vector<double>& theta,
+                                  double sd, double nu, const Eigen::VectorXd& leverage = {}) {
+  std::vector<FitResidual> res(r.size());
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    FitResidual& f = res[i];
+    f.value = r[i];
+    f.uncertainty = sd > 0.0 ? sd : 1.0;
+    f.leverage = leverage.size() > 0 ? leverage[static_cast<Eigen::Index>(i)] : 0.0;
+    f.where = "point " + std::to_string(i + 1) + " (at " + number(theta[i] * 180.0 / kPi) + " deg)";
+  }
+  if (!(sd > 0.0)) return test_consistency(res, 0.0, false);  // nothing scatters: no test
+  return test_consistency(res, nu, false, {0.5 * kFalseRefusalLevel, kNoiseOutlierLevel});
+}
+
+// High-pass residuals d − low and their per-point standard deviation √(variance·Λ/n).
+ConsistencyTest high_pass_outliers(const std::vector<double>& d, const std::vector<double>& low,
+                                   const std::vector<double>& theta, double variance,
+                                   double variance_factor) {
+  std::vector<double> h(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) h[i] = d[i] - low[i];
+  return residual_outliers(h, theta, std::sqrt(variance * variance_factor),
+                           static_cast<double>(d.size()));
+}
+
 SigmaEstimate sigma_from_variance(double variance, double nu) {
   SigmaEstimate s;
   s.sigma_mm = std::sqrt(std::max(variance, 0.0));
@@ -415,6 +462,7 @@ ScanNoiseResult scan_core(const PreparedProfile& p, const ReferenceProfile& refe
                                        : std::numeric_limits<double>::infinity();
   r.phase_determined = !r.phase_estimated || r.phase_snr >= kPhaseSnr;
   r.systematic = systematic_profile(p.theta, low, ss / lambda * r.factor.low_pass_variance_factor);
+  r.consistency = high_pass_outliers(d, low, p.theta, ss / lambda, r.factor.variance_factor);
   r.raw_rms_mm = rms(p.e);
   r.reference_rms_mm = rms(g);
   r.low_pass_rms_mm = rms(low);
@@ -455,8 +503,31 @@ std::string sigma_text(const SigmaEstimate& s) {
   return os.str();
 }
 
+// "reference r.csv, scan s.csv, …": what a result was computed from, for refusals.
+std::string inputs_text(const NoiseCharacterization& c) {
+  std::string s = "reference " + c.reference_source;
+  if (c.scan || c.repeated) s += ", scan " + c.scan_source;
+  if (c.repeated) s += ", repeat scan " + c.repeat_source;
+  if (c.touch) s += ", touch points " + c.touch_source;
+  return s;
+}
+
+// σ finite and in the physical range of a CMM's noise, naming what it came from.
+void check_sigma(double sigma_mm, const char* what, const NoiseCharacterization& c) {
+  if (!(sigma_mm >= 0.0 && sigma_mm <= kMaxNoiseSigmaMm))
+    throw InvalidInput(std::string("the ") + what + " sigma " + number(sigma_mm * kUmPerMm) +
+                       " um is outside the range of a CMM's noise (0 to 1000 um): computed from " +
+                       inputs_text(c) + " — the wrong artefact, reference or units; nothing written");
+}
+
 nlohmann::json noise_section(const NoiseCharacterization& c, std::optional<double> fb_scan,
                              std::optional<double> fb_touch) {
+  if (c.repeated) {
+    check_sigma(c.repeated->noise.sigma_mm, "scanning", c);
+    check_sigma(c.repeated->roughness.sigma_mm, "roughness", c);
+  }
+  if (c.scan) check_sigma(c.scan->sigma.sigma_mm, "scanning", c);
+  if (c.touch) check_sigma(c.touch->sigma.sigma_mm, "touch-trigger", c);
   if (!c.scan && !c.repeated && !c.touch)
     throw InvalidInput("noise_section_json: no scan or touch-trigger data were characterised");
   for (const auto& [v, name] : {std::pair{fb_scan, "scanning"}, std::pair{fb_touch, "touch"}})
@@ -538,17 +609,20 @@ void validate_reference_profile(const ReferenceProfile& profile, const char* cal
   const std::string prefix = std::string(caller) + ": reference";
   geometry::validate_roundness_profile(profile, prefix.c_str());
   check_equiangular(profile, prefix + ": ");
+  check_reference_range(profile, prefix + ": ");
 }
 
 ReferenceProfile read_reference_profile_csv(std::istream& in, const std::string& source) {
   ReferenceProfile p = geometry::read_roundness_profile_csv(in, source);
   check_equiangular(p, "");
+  check_reference_range(p, "");
   return p;
 }
 
 ReferenceProfile read_reference_profile_csv_file(const std::string& path) {
   ReferenceProfile p = geometry::read_roundness_profile_csv_file(path);
   check_equiangular(p, "");
+  check_reference_range(p, "");
   return p;
 }
 
@@ -653,6 +727,12 @@ TouchNoiseResult touch_trigger_noise(std::span<const Point2> points,
   out.scan_systematics_removed = scan_systematics != nullptr;
   out.scan_noise_variance_mm2 = scan_systematics ? scan_systematics->noise_variance_mm2 : 0.0;
   out.sigma = sigma_from_variance(ss / nu - out.scan_noise_variance_mm2, nu);
+  {
+    Eigen::MatrixXd j(static_cast<Eigen::Index>(points.size()), 3);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      j.row(static_cast<Eigen::Index>(i)) << std::cos(p.theta[i]), std::sin(p.theta[i]), 1.0;
+    out.consistency = residual_outliers(p.e, p.theta, std::sqrt(ss / nu), nu, leverages(j));
+  }
   return out;
 }
 
@@ -681,6 +761,15 @@ RepeatedScanResult repeated_scan_noise(std::span<const Point2> scan, std::span<c
                          "(same track, same start, same sense); point " +
                          std::to_string(i) + " differs by " +
                          number(wrap(p2.theta[i] - p1.theta[i]) / step) + " steps");
+  // A scan given twice (the same file, or a copy) would give σ_noise = 0 and call the whole
+  // scatter roughness.
+  bool identical = true;
+  for (std::size_t i = 0; i < n && identical; ++i)
+    identical = scan[i].x == repeat[i].x && scan[i].y == repeat[i].y;
+  if (identical)
+    throw InvalidInput(std::string(kCaller) +
+                       ": the repeat scan is point for point identical to the first: one scan "
+                       "given twice; the repeat must be a second measurement of the track");
   RepeatedScanResult out;
   std::vector<double> g;
   out.first = scan_core(p1, reference, options, kCaller, &g);
@@ -693,10 +782,16 @@ RepeatedScanResult repeated_scan_noise(std::span<const Point2> scan, std::span<c
   const HighPassNoiseFactor f = out.first.factor;
   const double lambda = f.variance_factor * static_cast<double>(n), nu = f.degrees_of_freedom;
   std::vector<double> low_mean;
-  const double s_minus = high_pass_sum_squares(diff, cutoff) / lambda;            // 2 σ_n²
+  std::vector<double> low_diff;
+  const double s_minus = high_pass_sum_squares(diff, cutoff, &low_diff) / lambda;  // 2 σ_n²
   const double s_plus = high_pass_sum_squares(mean, cutoff, &low_mean) / lambda;  // σ_r² + σ_n²/2
+  if (!(s_minus > 0.0))
+    throw InvalidInput(std::string(kCaller) +
+                       ": the two scans do not differ above the cut-off (noise sigma 0): the same "
+                       "measurement given twice?");
   out.systematic = systematic_profile(p1.theta, low_mean, s_plus * f.low_pass_variance_factor);
   out.noise = sigma_from_variance(0.5 * s_minus, nu);
+  out.difference_consistency = high_pass_outliers(diff, low_diff, p1.theta, s_minus, f.variance_factor);
   const double var_r = s_plus - 0.25 * s_minus;
   const double u_var =
       std::sqrt(2.0 * s_plus * s_plus / nu + 2.0 * (0.25 * s_minus) * (0.25 * s_minus) / nu);
@@ -722,7 +817,9 @@ RepeatedScanResult repeated_scan_noise(std::span<const Point2> scan, std::span<c
 std::string noise_section_json(const NoiseCharacterization& c,
                                std::optional<double> fallback_scanning_sigma_mm,
                                std::optional<double> fallback_touch_sigma_mm) {
-  return noise_section(c, fallback_scanning_sigma_mm, fallback_touch_sigma_mm).dump(2);
+  const nlohmann::json sec = noise_section(c, fallback_scanning_sigma_mm, fallback_touch_sigma_mm);
+  internal::require_finite_numbers(sec, inputs_text(c), "noise");
+  return sec.dump(2);
 }
 
 std::optional<std::string> roughness_section_json(const NoiseCharacterization& c) {
@@ -733,7 +830,8 @@ std::optional<std::string> roughness_section_json(const NoiseCharacterization& c
 
 std::string noise_characterization_json(const NoiseCharacterization& c,
                                         std::optional<double> fallback_scanning_sigma_mm,
-                                        std::optional<double> fallback_touch_sigma_mm) {
+                                        std::optional<double> fallback_touch_sigma_mm,
+                                        bool accepted_inconsistent) {
   nlohmann::json out;
   out["noise"] = noise_section(c, fallback_scanning_sigma_mm, fallback_touch_sigma_mm);
   if (const auto r = roughness_section(c)) out["roughness"] = *r;
@@ -742,10 +840,16 @@ std::string noise_characterization_json(const NoiseCharacterization& c,
       "CMM profile minus reference profile; Gaussian high-pass (scanning) or "
       "least-squares circle (touch); docs/characterization.md";
   d["reference"] = c.reference_source;
-  if (c.scan) d["scan"] = scan_json(*c.scan, c.scan_source);
+  if (c.scan) {
+    d["scan"] = scan_json(*c.scan, c.scan_source);
+    d["scan"]["consistency"] =
+        internal::consistency_json<nlohmann::json>(c.scan->consistency, accepted_inconsistent);
+  }
   if (c.repeated) {
     const RepeatedScanResult& r = *c.repeated;
     d["scan"] = scan_json(r.first, c.scan_source);
+    d["scan"]["consistency"] =
+        internal::consistency_json<nlohmann::json>(r.first.consistency, accepted_inconsistent);
     d["scan"]["note"] = "single-scan sigma: noise and roughness together";
     d["repeat"] = {{"file", c.repeat_source},
                    {"noise_from_difference", sigma_json(r.noise)},
@@ -753,7 +857,9 @@ std::string noise_characterization_json(const NoiseCharacterization& c,
                    {"roughness_status", std::string(to_string(r.roughness_status))},
                    {"roughness_variance_um2", r.roughness_variance_mm2 * 1e6},
                    {"roughness_variance_uncertainty_um2", r.roughness_variance_u_mm2 * 1e6},
-                   {"roughness_upper_bound_um", r.roughness_upper_bound_mm * kUmPerMm}};
+                   {"roughness_upper_bound_um", r.roughness_upper_bound_mm * kUmPerMm},
+                   {"consistency", internal::consistency_json<nlohmann::json>(
+                                       r.difference_consistency, accepted_inconsistent)}};
   } else if (c.scan) {
     d["roughness"] =
         "not identifiable from a single scan (noise and roughness are both white "
@@ -767,8 +873,11 @@ std::string noise_characterization_json(const NoiseCharacterization& c,
                   {"scan_systematics_removed", c.touch->scan_systematics_removed},
                   {"scan_noise_variance_um2", c.touch->scan_noise_variance_mm2 * 1e6},
                   {"center_mm", {c.touch->center_mm.x, c.touch->center_mm.y}},
-                  {"radius_mm", c.touch->radius_mm}};
+                  {"radius_mm", c.touch->radius_mm},
+                  {"consistency", internal::consistency_json<nlohmann::json>(
+                                      c.touch->consistency, accepted_inconsistent)}};
   out["characterization"] = d;
+  internal::require_finite_numbers(out, inputs_text(c));
   return out.dump(2) + "\n";
 }
 

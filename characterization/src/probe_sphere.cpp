@@ -16,6 +16,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "output_checks.h"
 #include "vcmm/errormodel/errors.h"
 
 namespace vcmm::characterization {
@@ -180,6 +181,16 @@ SphereProbeCharacterization characterize_probe_sphere(const Eigen::Matrix3Xd& po
          " mm");
   check_finite_non_negative(sphere.diameter_u_mm, "the diameter's standard uncertainty (mm)");
   check_finite_non_negative(sphere.form_mm, "the sphere's form deviation (mm)");
+  if (!(sphere.diameter_u_mm <= 0.01 * sphere.diameter_mm))
+    fail("the diameter's standard uncertainty " + number(sphere.diameter_u_mm) +
+         " mm exceeds 1 % of the diameter (a calibrated sphere's is a fraction of a um)");
+  if (!(sphere.form_mm <= 0.01 * sphere.diameter_mm))
+    fail("the sphere's form deviation " + number(sphere.form_mm) +
+         " mm exceeds 1 % of the diameter (a calibrated sphere's is a fraction of a um)");
+  if (options.probing_sigma_mm &&
+      !(*options.probing_sigma_mm > 0.0 && *options.probing_sigma_mm <= 0.005 * sphere.diameter_mm))
+    fail("the probing sigma must be > 0 and at most 1 % of the radius; got " +
+         number(*options.probing_sigma_mm) + " mm");
   for (Eigen::Index i = 0; i < points_mm.cols(); ++i)
     for (int j = 0; j < 3; ++j)
       if (!std::isfinite(points_mm(j, i)))
@@ -338,6 +349,27 @@ SphereProbeCharacterization characterize_probe_sphere(const Eigen::Matrix3Xd& po
     h.sin_mm = {sn.value_mm, sn.u_mm};
     out.probe.directional.push_back(h);
   }
+  // ---- (6) consistency of the residuals with the stated noise and form ----
+  {
+    const Eigen::VectorXd h = svd.matrixU().rowwise().squaredNorm();
+    const double u = options.probing_sigma_mm
+                         ? std::sqrt(*options.probing_sigma_mm * *options.probing_sigma_mm +
+                                     sphere.form_mm * sphere.form_mm / 12.0)
+                         : 1.0;  // a common factor only: the studentized test
+    std::vector<FitResidual> res(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) {
+      FitResidual& f = res[static_cast<std::size_t>(i)];
+      f.value = rho[i];
+      f.uncertainty = u;
+      f.leverage = h[i];
+      std::ostringstream where;
+      where.precision(10);
+      where << "point " << i + 1 << " (" << points_mm(0, i) << ", " << points_mm(1, i) << ", "
+            << points_mm(2, i) << ")";
+      f.where = where.str();
+    }
+    out.consistency = test_consistency(res, nu, options.probing_sigma_mm.has_value());
+  }
   out.usable = true;
   std::ostringstream msg;
   msg.precision(4);
@@ -349,11 +381,13 @@ SphereProbeCharacterization characterize_probe_sphere(const Eigen::Matrix3Xd& po
 }
 
 std::string probe_section_json(const SphereProbeCharacterization& result, std::string_view source) {
-  return section(result, source).dump(2);
+  const nlohmann::json sec = section(result, source);
+  internal::require_finite_numbers(sec, source, "probe");
+  return sec.dump(2);
 }
 
 std::string probe_characterization_json(const SphereProbeCharacterization& r,
-                                        std::string_view source) {
+                                        std::string_view source, bool accepted_inconsistent) {
   nlohmann::json out;
   out["probe"] = section(r, source);
   nlohmann::json c;
@@ -379,7 +413,9 @@ std::string probe_characterization_json(const SphereProbeCharacterization& r,
   for (const NotIdentifiable& x : r.not_identifiable)
     ni.push_back({{"what", x.what}, {"reason", x.reason}});
   c["not_identifiable"] = ni;
+  c["consistency"] = internal::consistency_json<nlohmann::json>(r.consistency, accepted_inconsistent);
   out["characterization"] = c;
+  internal::require_finite_numbers(out, source);
   return out.dump(2) + "\n";
 }
 

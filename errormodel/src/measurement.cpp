@@ -51,6 +51,21 @@ std::string format_double(double v) {
   return std::string(buf.data(), r.ptr);
 }
 
+/// The angle in degrees as the shortest decimal that the reader (degrees × π/180) turns back
+/// into exactly `rad`: 30, not 29.999999999999996, for an orientation given as 30°.
+std::string degrees_text(double rad) {
+  const double deg = rad * 180.0 / std::numbers::pi;
+  std::array<char, 32> buf{};
+  for (int decimals = 0; decimals <= 17; ++decimals) {
+    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), deg,
+                                 std::chars_format::fixed, decimals);
+    double back = 0.0;
+    std::from_chars(buf.data(), r.ptr, back);
+    if (back * std::numbers::pi / 180.0 == rad) return std::string(buf.data(), r.ptr);
+  }
+  return format_double(deg);
+}
+
 std::string_view trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t\r");
   if (first == std::string_view::npos) return {};
@@ -191,8 +206,7 @@ void write_measurement_csv(std::ostream& out, const Measurement& m,
   s += "# temperature_C: " + format_double(m.temperature_c) + "\n";
   s += "# location_mm: " + format_double(loc.x()) + ", " + format_double(loc.y()) + ", " +
        format_double(loc.z()) + "\n";
-  s += "# orientation_deg: " +
-       format_double(m.placement.orientation_rad * 180.0 / std::numbers::pi) + "\n";
+  s += "# orientation_deg: " + degrees_text(m.placement.orientation_rad) + "\n";
   s += "# stylus_offset_mm: " + format_double(t.x()) + ", " + format_double(t.y()) + ", " +
        format_double(t.z()) + "\n";
   for (const std::string& c : comments) s += "# " + c + "\n";

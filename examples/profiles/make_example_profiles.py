@@ -16,7 +16,7 @@ import random
 
 CENTER = (412.5, 305.25)
 RADIUS = 85.5
-HEIGHT = -120.0
+HEIGHT = 150.0  # measuring height: tip z in the machine frame of examples/cmm_model.json
 # (order, amplitude mm, phase rad): ~200 nm peak-to-valley in total
 HARMONICS = [(2, 45e-6, 0.4), (3, 30e-6, 1.9), (4, 12e-6, 2.7), (5, 10e-6, 0.1),
              (7, 6e-6, 4.0), (11, 4e-6, 5.2), (17, 3e-6, 1.3)]

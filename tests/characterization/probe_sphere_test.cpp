@@ -130,7 +130,7 @@ TEST(ProbeSphere, OneHarmonicOnly) {
   const Eigen::Matrix3Xd pts =
       simulate_sphere(truth, 0.0, dense_hemisphere_directions(), kDiameter, 1, kPi / 6.0);
   const SphereProbeCharacterization r =
-      characterize_probe_sphere(pts, {kDiameter, 0.0, 0.0}, {{2, 3, 4, 5}});
+      characterize_probe_sphere(pts, {kDiameter, 0.0, 0.0}, {{2, 3, 4, 5}, std::nullopt});
   ASSERT_TRUE(r.usable) << r.message;
   EXPECT_NEAR(r.tip_radius_error.value_mm, 0.0, 1e-12);
   for (const ProbeParameterEstimate& e : r.directional)
@@ -145,7 +145,7 @@ TEST(ProbeSphere, OrderOneIsReportedNotIdentifiableAndNeverOutput) {
   const Eigen::Matrix3Xd pts =
       simulate_sphere(truth, 0.05 * kUm, dense_hemisphere_directions(), kDiameter, 2);
   const SphereProbeCharacterization r =
-      characterize_probe_sphere(pts, {kDiameter, 0.0, 0.0}, {{1, 2}});
+      characterize_probe_sphere(pts, {kDiameter, 0.0, 0.0}, {{1, 2}, std::nullopt});
   ASSERT_TRUE(r.usable) << r.message;
   ASSERT_EQ(r.not_identifiable.size(), 1u);
   EXPECT_EQ(r.not_identifiable[0].what, "order 1");
@@ -163,7 +163,7 @@ TEST(ProbeSphere, Order8OnTheIsoPlanIsRankDeficient) {
   const Eigen::Matrix3Xd dirs = iso10360_5_directions();
   const Eigen::Matrix3Xd pts = simulate_sphere(probe_truth(0.2, {}), 0.1 * kUm, dirs, kDiameter, 3);
   const SphereProbeCharacterization r =
-      characterize_probe_sphere(pts, {kDiameter, 0.0, 0.0}, {{2, 8}});
+      characterize_probe_sphere(pts, {kDiameter, 0.0, 0.0}, {{2, 8}, std::nullopt});
   EXPECT_EQ(r.status, SphereFitStatus::rank_deficient);
   EXPECT_FALSE(r.usable);
   EXPECT_NE(r.message.find("sin_8"), std::string::npos) << r.message;
@@ -178,7 +178,7 @@ TEST(ProbeSphere, SingleLatitudeCircleConfoundsCentreZWithTipRadius) {
   const Eigen::Matrix3Xd pts =
       simulate_sphere(probe_truth(0.2, {}), 0.1 * kUm, sphere_directions(circle), kDiameter, 4);
   const SphereProbeCharacterization r =
-      characterize_probe_sphere(pts, {kDiameter, 0.0, 0.0}, {{2}});
+      characterize_probe_sphere(pts, {kDiameter, 0.0, 0.0}, {{2}, std::nullopt});
   EXPECT_EQ(r.status, SphereFitStatus::rank_deficient);
   EXPECT_NE(r.message.find("centre_z"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("tip_radius_error"), std::string::npos) << r.message;
@@ -289,7 +289,7 @@ TEST(ProbeSphere, SectionLoadsIntoTheDigitalModel) {
   const Eigen::Matrix3Xd pts =
       simulate_sphere(truth, 0.1 * kUm, dense_hemisphere_directions(), kDiameter, 7);
   const SphereProbeCharacterization r =
-      characterize_probe_sphere(pts, {kDiameter, 0.05 * kUm, 0.03 * kUm}, {{2, 3}});
+      characterize_probe_sphere(pts, {kDiameter, 0.05 * kUm, 0.03 * kUm}, {{2, 3}, std::nullopt});
   ASSERT_TRUE(r.usable) << r.message;
   std::ifstream f(kExample);
   nlohmann::json model = nlohmann::json::parse(f);
@@ -400,7 +400,7 @@ TEST(ProbeSphere, BadInput) {
   for (; c < 20; ++c) cube.col(c) = Eigen::Vector3d(7.0, -3.0, 2.0 + c);
   expect_invalid(
       [&] {
-        (void)characterize_probe_sphere(cube, {20.0, 0.0, 0.0}, {{2}});
+        (void)characterize_probe_sphere(cube, {20.0, 0.0, 0.0}, {{2}, std::nullopt});
       },
       "do not lie on a sphere");
   Eigen::Matrix3Xd huge = good;
@@ -429,7 +429,7 @@ TEST(ProbeSphere, BadInput) {
       "form deviation");
   expect_invalid(
       [&] {
-        (void)characterize_probe_sphere(good, sphere, {{2, 17}});
+        (void)characterize_probe_sphere(good, sphere, {{2, 17}, std::nullopt});
       },
       "harmonic orders must be 1 to 16; got 17");
 }

@@ -4,6 +4,7 @@
 // its resume.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -82,6 +83,50 @@ TEST(CliUncertainty, SameSeedSameNumbersForOneAndTwoThreads) {
   EXPECT_EQ(x.rfind("diameter_mm,roundness_um\n", 0), 0u);
 }
 
+// --budget: the "budget" object (docs/formats.md), five sources in stage order, the
+// quadrature sum beside the full u; the table carries it too; the same numbers for one and two
+// threads; --budget-trials needs --budget.
+TEST(CliUncertainty, BudgetPerErrorSource) {
+  const std::string args = "--trials 200 --pilot-trials 100 --budget --budget-trials 100 --json ";
+  const CliRun a = run(uncertainty_args(args + "--threads 1"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const auto j = nlohmann::json::parse(a.out);
+  const auto& b = j["budget"];
+  EXPECT_EQ(b["trials"], 100);
+  ASSERT_EQ(b["sources"].size(), 5u);
+  const char* names[] = {"roughness", "temperature", "kinematic", "probe", "noise"};
+  double shares = 0.0;
+  for (std::size_t i = 0; i < 5; ++i) {
+    const auto& s = b["sources"][i];
+    EXPECT_EQ(s["source"], names[i]);
+    EXPECT_GT(s["diameter_u_mm"].get<double>(), 0.0) << names[i];
+    EXPECT_GE(s["roundness_u_um"].get<double>(), 0.0) << names[i];
+    shares += s["share_of_variance"]["diameter"].get<double>();
+  }
+  EXPECT_NEAR(shares, 1.0, 1e-12);
+  const auto& q = b["quadrature_sum"];
+  for (const char* k : {"diameter_u_mm", "roundness_u_um", "full_diameter_u_mm",
+                        "full_roundness_u_um", "diameter_ratio", "roundness_ratio"})
+    EXPECT_TRUE(q[k].is_number()) << k;
+  EXPECT_NE(b["note"].get<std::string>().find("common random numbers"), std::string::npos);
+  const CliRun two = run(uncertainty_args(args + "--threads 2"));
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  auto j2 = nlohmann::json::parse(two.out);
+  j2["budget"].erase("wall_seconds");
+  auto j1 = j;
+  j1["budget"].erase("wall_seconds");
+  EXPECT_EQ(j1["budget"], j2["budget"]);
+  EXPECT_FALSE(nlohmann::json::parse(run(uncertainty_args("--trials 200 --json")).out)
+                   .contains("budget"));  // off by default
+  const CliRun t = run(uncertainty_args("--trials 200 --pilot-trials 100 --budget"));
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("uncertainty budget"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("sqrt(sum u_i^2)"), std::string::npos) << t.out;
+  const CliRun bad = run(uncertainty_args("--trials 200 --budget-trials 100"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--budget"), std::string::npos) << bad.err;
+}
+
 TEST(CliUncertainty, BadOptionsAndInputs) {
   EXPECT_EQ(run(uncertainty_args("--trials 100 --adaptive 0.01")).exit_code, 2);
   EXPECT_EQ(run(uncertainty_args("--reference XY")).exit_code, 2);
@@ -102,6 +147,49 @@ TEST(CliUncertainty, BadOptionsAndInputs) {
                        "' --trials 100 --filter-upr 50 --progress never");
   EXPECT_EQ(s.exit_code, 3) << s.out;
   EXPECT_NE(s.err.find("cut-off"), std::string::npos) << s.err;
+}
+
+TEST(CliUncertainty, PlainCmmExportWithMetadataOptions) {
+  // The bundled example export (x,y,z in the model's machine frame, no metadata header) runs
+  // with the metadata given as options — the command docs/cli.md shows.
+  const std::string scan = std::string(VCMM_SOURCE_DIR) + "/examples/profiles/ring_171mm_scan.csv";
+  const std::string base = "uncertainty --model '" + kModel + "' --points '" + scan +
+                           "' --progress never --trials 300 --pilot-trials 100 ";
+  const CliRun r = run(base + "--mode scanning --temperature 20.3 --stylus-offset 0,0,-100 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["measurands"]["diameter"]["estimate"].get<double>(), 171.0, 0.002);
+  EXPECT_EQ(j["provenance"]["points_sha256"], vcmm::validation::sha256_hex(slurp(scan)));
+  for (const char* m : {"diameter", "roundness"}) {
+    const auto& q = j["measurands"][m];
+    const auto& ci = q["corrected_interval"];
+    EXPECT_LT(ci["low"].get<double>(), ci["high"].get<double>()) << m;
+    // The note's numbers are the JSON's, in its unit (issue 13: "bias 0.4378 um" beside a
+    // note saying "Bias 0.0004378").
+    char bias[32];
+    std::snprintf(bias, sizeof bias, "%.4g %s", q["bias"].get<double>(),
+                  q["unit"] == "um" ? "µm" : "mm");
+    EXPECT_NE(q["note"].get<std::string>().find(bias), std::string::npos)
+        << m << ": " << bias << " not in " << q["note"];
+  }
+  // The table: U (k = 2) and both intervals, the bias never printed as "-0.0…0".
+  const CliRun t = run(base + "--mode scanning --temperature 20.3 --stylus-offset 0,0,-100");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("expanded U (k = 2)"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("% interval (shortest)"), std::string::npos) << t.out;
+  for (const char* zero : {" -0.00 ", " -0.0000 ", " -0.00000 "})
+    EXPECT_EQ(t.out.find(zero), std::string::npos) << t.out;
+  // Every missing item named at once with the file that lacks them, exit 3.
+  const CliRun missing = run(base + "--json");
+  EXPECT_EQ(missing.exit_code, 3) << missing.err;
+  EXPECT_NE(missing.err.find("ring_171mm_scan.csv"), std::string::npos) << missing.err;
+  for (const char* k : {"--mode", "--temperature", "--stylus-offset"})
+    EXPECT_NE(missing.err.find(k), std::string::npos) << k << ": " << missing.err;
+  // Points outside the model's travel with this stylus: refused naming the axis (exit 3).
+  const CliRun travel =
+      run(base + "--mode scanning --temperature 20.3 --stylus-offset 0,0,200 --json");
+  EXPECT_EQ(travel.exit_code, 3) << travel.err;
+  EXPECT_NE(travel.err.find("Z axis"), std::string::npos) << travel.err;
 }
 
 TEST(CliUncertainty, OutputsAppearTogetherOrNotAtAll) {

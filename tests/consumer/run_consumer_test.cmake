@@ -12,7 +12,8 @@ endif()
 # compiled and linked with the same -fsanitize (CMake links with CMAKE_CXX_FLAGS too).
 set(consumer_flags)
 if(CONSUMER_SANITIZE)
-  set(consumer_flags "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined")
+  set(consumer_flags "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined"
+                     "-DCMAKE_C_FLAGS=-fsanitize=address,undefined")
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${CONSUMER_SOURCE_DIR}" -B "${WORK_DIR}/build"
                         -G "${CMAKE_GENERATOR}" -DCMAKE_BUILD_TYPE=Release
@@ -25,7 +26,9 @@ execute_process(COMMAND ${CMAKE_COMMAND} --build "${WORK_DIR}/build" RESULT_VARI
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "building the consumer project failed")
 endif()
-execute_process(COMMAND "${WORK_DIR}/build/consumer" RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the consumer program failed (${rc})")
-endif()
+foreach(program consumer c_consumer)
+  execute_process(COMMAND "${WORK_DIR}/build/${program}" RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the ${program} program failed (${rc})")
+  endif()
+endforeach()

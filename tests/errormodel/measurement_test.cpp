@@ -63,7 +63,7 @@ TEST(Measurement, PlacementMapsWorkpieceToMachineByRotationAboutZThenTranslation
   EXPECT_NEAR(w(2, 0), 302.0, 1e-14);
 }
 
-TEST(Measurement, CsvRoundTripIsBitExactExceptOrientationToOneUlp) {
+TEST(Measurement, CsvRoundTripIsBitExact) {
   const Measurement m = small_ring();
   const std::string csv = measurement_csv(m);
   std::istringstream in(csv);
@@ -74,8 +74,18 @@ TEST(Measurement, CsvRoundTripIsBitExactExceptOrientationToOneUlp) {
   EXPECT_EQ(r.temperature_c, m.temperature_c);
   EXPECT_EQ(r.placement.location_mm, m.placement.location_mm);
   EXPECT_EQ(r.stylus_offset_mm, m.stylus_offset_mm);
-  // Degrees in the file: rad → deg → rad may differ in the last bit.
-  EXPECT_NEAR(r.placement.orientation_rad, m.placement.orientation_rad, 4e-16);
+  // Degrees in the file, written as the shortest decimal that reads back to the same radians:
+  // "30", not "29.999999999999996".
+  EXPECT_EQ(r.placement.orientation_rad, m.placement.orientation_rad);
+  EXPECT_NE(csv.find("# orientation_deg: 30\n"), std::string::npos) << csv.substr(0, 400);
+  // Any angle reads back to within an ulp (exactly where a decimal maps back, as here).
+  Measurement a = m;
+  for (double deg : {0.1, 17.3, 45.0, 90.0, 123.456789, -60.0, 359.9}) {
+    a.placement.orientation_rad = deg * std::numbers::pi / 180.0;
+    std::istringstream ain(measurement_csv(a));
+    EXPECT_EQ(read_measurement_csv(ain, "mem").placement.orientation_rad,
+              a.placement.orientation_rad) << deg;
+  }
   EXPECT_NE(csv.find("x_mm,y_mm,z_mm,nx,ny,nz\n"), std::string::npos);
   EXPECT_NE(csv.find("# mode: touch_trigger\n"), std::string::npos);
 }

@@ -209,11 +209,36 @@ TEST(CorrectBiasAtSurrogate, NegativeCorrectedValueIsClampedAndSaid) {
   EXPECT_TRUE(c.clamped);
   EXPECT_EQ(c.corrected, 0.0);
   EXPECT_NE(c.note.find("reported as 0"), std::string::npos) << c.note;
+  // The reflected interval would be [0, −0.4 + √(0.3² + (1.96·0.1)²)] = [0, −0.042]: its upper
+  // end is that of N(−0.4, u_c²) truncated at 0 instead: P(0 ≤ X ≤ q) = 0.95·P(X ≥ 0).
+  EXPECT_EQ(c.interval.low, 0.0);
+  EXPECT_GT(c.interval.high, 0.0);
+  const double uc = c.standard_uncertainty;
+  const double above = 1.0 - normal_cdf(0.4 / uc);
+  const double inside = normal_cdf((c.interval.high + 0.4) / uc) - normal_cdf(0.4 / uc);
+  EXPECT_NEAR(inside / above, 0.95, 1e-9);
+  EXPECT_NE(c.note.find("truncated at 0"), std::string::npos) << c.note;
   // A signed quantity is not clamped.
   const BiasCorrection d = correct_bias_at_surrogate(0.5, 0.1, summary(1.0, 0.2, 0.7, 1.4),
                                                      summary(0.1, 0.1, 0.0, 0.3), false);
   EXPECT_FALSE(d.clamped);
   EXPECT_DOUBLE_EQ(d.corrected, -0.4);
+}
+
+TEST(CorrectBiasAtSurrogate, IntervalFarBelowZeroStillEndsAboveZero) {
+  // Corrected −50 with u_c ≈ 0.22 (223 standard uncertainties below 0): the truncated normal's
+  // tail underflows; its exponential limit gives q = u_c² ln 20 / 50.
+  const BiasCorrection c = correct_bias_at_surrogate(0.0, 0.0, summary(50.0, 0.2, 49.6, 50.4),
+                                                     summary(0.0, 0.1, 0.0, 0.3), true);
+  EXPECT_TRUE(c.clamped);
+  EXPECT_EQ(c.interval.low, 0.0);
+  const double uc = c.standard_uncertainty;
+  EXPECT_NEAR(c.interval.high, uc * uc * std::log(20.0) / 50.0, 1e-12);
+  EXPECT_LT(c.interval.low, c.interval.high);
+  // A clamped lower end with a positive reflected upper end keeps the reflected one.
+  const BiasCorrection d = correct_bias_at_surrogate(1.0, 0.2, summary(0.9, 0.3, 0.4, 1.5),
+                                                     summary(0.25, 0.4, 0.0, 1.0), true);
+  EXPECT_DOUBLE_EQ(d.interval.high, 0.3 + std::hypot(0.5, standard_normal_quantile(0.975) * 0.4));
 }
 
 TEST(CorrectBiasAtSurrogate, RejectsBadInputNamingIt) {

@@ -315,7 +315,8 @@ TEST_F(CampaignTest, UnknownKeysAreErrorsAnywhere) {
   doc["measurements"][1]["setup"]["colour"] = "red";
   EXPECT_EQ(rule_of(doc),
             "measurements[1] (\"C-O090-top-touch\").setup: unknown key \"colour\" (allowed "
-            "here: location, location_mm, orientation_deg, height, mode, temperature_c)");
+            "here: location, location_mm, orientation_deg, height, mode, temperature_c, "
+            "stylus_offset_mm, frame, surface, radius_mm, profile_height_mm)");
   doc = example();
   doc["measurements"][0]["comment"] = "x";
   const Failure f = failure_of(doc);

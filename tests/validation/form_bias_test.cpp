@@ -15,16 +15,14 @@
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/profile_harmonics.h"
 #include "vcmm/validation/ring_experiment.h"
+#include "support/perfect_model.h"
 
 namespace vcmm::validation {
 namespace {
 
 namespace em = vcmm::errormodel;
 
-em::DigitalModel perfect_model() {
-  const std::array<em::AxisRange, 3> ranges = {{{0, 1200}, {0, 1000}, {0, 800}}};
-  return em::DigitalModel(em::KinematicModel::zero(em::KinematicChain::moving_bridge(), ranges));
-}
+using test::perfect_model;
 
 em::Measurement ring(Eigen::Index n, const std::vector<em::FormHarmonic>& form) {
   em::RingGauge g;

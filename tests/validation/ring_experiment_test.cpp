@@ -12,16 +12,14 @@
 
 #include "vcmm/errormodel/ring_gauge.h"
 #include "vcmm/geometry/point.h"
+#include "support/perfect_model.h"
 
 namespace vcmm::validation {
 namespace {
 
 namespace em = vcmm::errormodel;
 
-em::DigitalModel perfect_model() {
-  const std::array<em::AxisRange, 3> ranges = {{{0, 1200}, {0, 1000}, {0, 800}}};
-  return em::DigitalModel(em::KinematicModel::zero(em::KinematicChain::moving_bridge(), ranges));
-}
+using test::perfect_model;
 
 em::Measurement ring(em::ProbingMode mode, Eigen::Index n, bool form) {
   em::RingGauge g;

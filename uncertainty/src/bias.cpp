@@ -64,10 +64,8 @@ BiasCorrection correct_bias(double estimate, const MeasurandSummary& summary, bo
     c.standard_uncertainty = std::hypot(u, b);
     c.interval.low = std::max(0.0, mc.low - b);
     c.interval.high = mc.high + b;
-    c.note = "Bias correction refused: the bias " + format_short(c.bias) +
-             " exceeds the estimate " + format_short(estimate) +
-             " and would make a non-negative quantity negative, so the estimate is reported "
-             "uncorrected with u enlarged by |b| and the Monte Carlo interval widened by |b|.";
+    c.corrected_unclamped = corrected;
+    c.note = describe(c);
     return c;
   }
   c.applied = true;
@@ -75,14 +73,12 @@ BiasCorrection correct_bias(double estimate, const MeasurandSummary& summary, bo
   c.standard_uncertainty = std::hypot(u, c.bias_standard_error);
   c.interval.low = 2.0 * estimate - mc.high;
   c.interval.high = 2.0 * estimate - mc.low;
-  c.note = "Bias " + format_short(c.bias) + " (Monte Carlo mean minus estimate, standard error " +
-           format_short(c.bias_standard_error) +
-           ") subtracted; the interval is the Monte Carlo interval reflected about the estimate";
+  c.corrected_unclamped = corrected;
   if (non_negative && c.interval.low < 0.0) {
     c.interval.low = 0.0;
-    c.note += ", its lower end clamped at 0 for this non-negative quantity";
+    c.interval_low_clamped = true;
   }
-  c.note += ".";
+  c.note = describe(c);
   return c;
 }
 
@@ -126,6 +122,22 @@ double standard_normal_quantile(double p) {
   const double u = e * std::sqrt(2.0 * std::numbers::pi) * std::exp(0.5 * x * x);
   return x - u / (1.0 + 0.5 * x * u);
 }
+
+namespace {
+
+/// Upper end q of the interval [0, q] of probability p of N(mean, u²) truncated to [0, ∞):
+/// P(0 ≤ X ≤ q) = p · P(X ≥ 0), i.e. the upper tail beyond q is (1 − p) · Q(−mean/u). Where
+/// that tail underflows (mean below 0 by more than ~37 u) the truncated normal is an
+/// exponential of rate |mean|/u² to first order: q = u² ln(1/(1 − p)) / |mean|. u = 0: 0.
+double truncated_normal_upper_end(double mean, double u, double p) {
+  if (!(u > 0.0)) return std::max(mean, 0.0);
+  const double above_zero = 0.5 * std::erfc(-mean / (u * std::sqrt(2.0)));
+  const double tail = (1.0 - p) * above_zero;
+  if (tail > 1e-300) return std::max(0.0, mean - u * standard_normal_quantile(tail));
+  return u * u * std::log(1.0 / (1.0 - p)) / std::fabs(mean);
+}
+
+}  // namespace
 
 BiasCorrection correct_bias_at_surrogate(double estimate, double surrogate_value,
                                          const MeasurandSummary& at_surrogate,
@@ -180,18 +192,55 @@ BiasCorrection correct_bias_at_surrogate(double estimate, double surrogate_value
   }
   c.interval.low = corrected_raw - std::hypot(mc.high - at_surrogate.mean, kp * ub);
   c.interval.high = corrected_raw + std::hypot(at_surrogate.mean - mc.low, kp * ub);
-  c.note = "Bias " + internal::format_short(c.bias) +
-           " evaluated at the surrogate truth (Monte Carlo mean there minus its value " +
-           internal::format_short(surrogate_value) + ") subtracted; its own uncertainty " +
-           internal::format_short(ub) + " is a component of u";
-  if (c.clamped) c.note += "; the corrected value " + internal::format_short(corrected_raw) +
-                           " was below 0 and is reported as 0";
+  c.at_surrogate = true;
+  c.surrogate_value = surrogate_value;
+  c.corrected_unclamped = corrected_raw;
   if (non_negative && c.interval.low < 0.0) {
     c.interval.low = 0.0;
-    c.note += "; the interval's lower end clamped at 0";
+    c.interval_low_clamped = true;
+    // Far below 0 the reflected interval can end below 0 too ([0, negative] is no interval):
+    // its upper end is then at least that of N(corrected, u_c) truncated to [0, ∞).
+    const double floor_high =
+        truncated_normal_upper_end(corrected_raw, c.standard_uncertainty, mc.probability);
+    if (c.interval.high < floor_high) {
+      c.interval.high = floor_high;
+      c.interval_high_truncated = true;
+    }
   }
-  c.note += ".";
+  c.note = describe(c);
   return c;
+}
+
+std::string describe(const BiasCorrection& c, double scale, std::string_view unit) {
+  const auto q = [&](double x) {
+    std::string t = format_short(x * scale);
+    if (!unit.empty()) (t += ' ') += unit;
+    return t;
+  };
+  std::string n;
+  if (c.refused) {
+    return "Bias correction refused: the bias " + q(c.bias) + " exceeds the estimate " +
+           q(c.estimate) +
+           " and would make a non-negative quantity negative, so the estimate is reported "
+           "uncorrected with u enlarged by |b| and the Monte Carlo interval widened by |b|.";
+  }
+  if (c.at_surrogate) {
+    n = "Bias " + q(c.bias) +
+        " evaluated at the surrogate truth (Monte Carlo mean there minus its value " +
+        q(c.surrogate_value) + ") subtracted; its own uncertainty " + q(c.bias_uncertainty) +
+        " is a component of u";
+    if (c.clamped)
+      n += "; the corrected value " + q(c.corrected_unclamped) + " was below 0 and is reported as 0";
+    if (c.interval_low_clamped) n += "; the interval's lower end clamped at 0";
+    if (c.interval_high_truncated)
+      n += ", its upper end that of the normal distribution of the corrected value truncated at 0";
+  } else {
+    n = "Bias " + q(c.bias) + " (Monte Carlo mean minus estimate, standard error " +
+        q(c.bias_standard_error) +
+        ") subtracted; the interval is the Monte Carlo interval reflected about the estimate";
+    if (c.interval_low_clamped) n += ", its lower end clamped at 0 for this non-negative quantity";
+  }
+  return n + ".";
 }
 
 }  // namespace vcmm::uncertainty

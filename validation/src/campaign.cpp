@@ -364,13 +364,34 @@ class Reader {
     return m;
   }
 
+  /// An optional [x, y, z] (mm) member.
+  std::optional<std::array<double, 3>> triple(const json& v, const char* key,
+                                              const std::string& path) const {
+    const json* t = find(v, key);
+    if (!t) return std::nullopt;
+    const std::string p = join(path, key);
+    if (!t->is_array() || t->size() != 3) fail(p, "must be an array of 3 numbers [x, y, z] (mm)", *t);
+    std::array<double, 3> xyz{};
+    for (std::size_t k = 0; k < 3; ++k) {  // each a coordinate in a CMM (physical_ranges.h)
+      const std::string pk = p + "[" + std::to_string(k) + "]";
+      xyz[k] = number((*t)[k], pk);
+      if (const std::string problem =
+              errormodel::range_problem(errormodel::physical_range::coordinate_mm, xyz[k]);
+          !problem.empty())
+        fail(pk, problem);
+    }
+    return xyz;
+  }
+
   Setup setup(const json& v, const std::string& path) const {
     object(v, path,
            "{\"location\": ..., \"orientation_deg\": ..., \"height\": ..., \"mode\": ...}");
     only_keys(v,
               {{"location", ""}, {"location_mm", "the location"},
                {"orientation_deg", "the orientation"}, {"height", ""}, {"mode", ""},
-               {"temperature_c", "the temperature"}},
+               {"temperature_c", "the temperature"}, {"stylus_offset_mm", "the stylus offset"},
+               {"frame", ""}, {"surface", ""}, {"radius_mm", "the radius"},
+               {"profile_height_mm", "the profile height"}},
               path);
     Setup s;
     const std::string lp = join(path, "location");
@@ -378,21 +399,25 @@ class Reader {
     if (!is_label(s.location))
       fail(lp, "must be a non-empty label of letters, digits, '_', '.' and '-' (it goes "
                "into CSV tables unquoted)", member(v, "location", path));
-    if (const json* loc = find(v, "location_mm")) {
-      const std::string p = join(path, "location_mm");
-      if (!loc->is_array() || loc->size() != 3)
-        fail(p, "must be an array of 3 numbers [x, y, z] (mm)", *loc);
-      std::array<double, 3> xyz{};
-      for (std::size_t k = 0; k < 3; ++k) {
-        const std::string pk = p + "[" + std::to_string(k) + "]";
-        xyz[k] = number((*loc)[k], pk);
-        if (const std::string problem =
-                errormodel::range_problem(errormodel::physical_range::coordinate_mm, xyz[k]);
-            !problem.empty())
-          fail(pk, problem);
-      }
-      s.location_mm = xyz;
+    s.location_mm = triple(v, "location_mm", path);
+    s.stylus_offset_mm = triple(v, "stylus_offset_mm", path);
+    if (const json* f = find(v, "frame")) {
+      if (!f->is_string() || (*f != "machine" && *f != "workpiece"))
+        fail(join(path, "frame"), "must be one of \"machine\", \"workpiece\"", *f);
+      s.frame = *f == "machine" ? PointFrame::machine : PointFrame::workpiece;
     }
+    if (const json* f = find(v, "surface")) {
+      if (!f->is_string() || (*f != "inner" && *f != "outer"))
+        fail(join(path, "surface"), "must be one of \"inner\", \"outer\"", *f);
+      s.surface = *f == "inner" ? SurfaceSide::inner : SurfaceSide::outer;
+    }
+    if (const json* r = find(v, "radius_mm")) {
+      const double radius = number(*r, join(path, "radius_mm"));
+      if (!(radius > 0.0)) fail(join(path, "radius_mm"), "must be > 0 (mm)", *r);
+      s.radius_mm = radius;
+    }
+    if (const json* h = find(v, "profile_height_mm"))
+      s.profile_height_mm = number(*h, join(path, "profile_height_mm"));
     s.orientation_deg =
         number(member(v, "orientation_deg", path), join(path, "orientation_deg"));
     const std::string hp = join(path, "height");
@@ -638,6 +663,12 @@ std::string campaign_json(const Campaign& c) {
     s["height"] = std::string(to_string(m.setup.height));
     s["mode"] = std::string(errormodel::to_string(m.setup.mode));
     if (m.setup.temperature_c) s["temperature_c"] = *m.setup.temperature_c;
+    if (m.setup.stylus_offset_mm) s["stylus_offset_mm"] = *m.setup.stylus_offset_mm;
+    if (m.setup.frame)
+      s["frame"] = *m.setup.frame == PointFrame::machine ? "machine" : "workpiece";
+    if (m.setup.surface) s["surface"] = *m.setup.surface == SurfaceSide::inner ? "inner" : "outer";
+    if (m.setup.radius_mm) s["radius_mm"] = *m.setup.radius_mm;
+    if (m.setup.profile_height_mm) s["profile_height_mm"] = *m.setup.profile_height_mm;
     ordered_json& r = mj["reference"];
     r = ordered_json::object();
     if (m.reference.roundness) {

@@ -113,6 +113,56 @@ void check_setup(const Campaign& c, std::size_t i, const em::Measurement& m) {
                     shortest(m.temperature_c) + " C");
 }
 
+/// The entry's points file as a Measurement: vcmm's measurement CSV with its own metadata, or
+/// a plain point file / roundness-meter profile with the metadata from the entry's setup
+/// (measurement_input.h). Errors name the entry and the setup key.
+em::Measurement read_entry_points(const Campaign& c, std::size_t i) {
+  const CampaignMeasurement& entry = c.measurements[i];
+  const Setup& s = entry.setup;
+  const std::string file = entry.points_path.string();
+  const MeasurementFileKind kind = detect_measurement_file_kind(read_bytes(entry.points_path));
+  if (kind == MeasurementFileKind::vcmm_measurement) {
+    if (s.has_plain_file_keys())
+      setup_error(c, i, "setup",
+                  "stylus_offset_mm, frame, surface, radius_mm and profile_height_mm are for "
+                  "plain point files and profiles; " + file +
+                      " is vcmm's measurement CSV and carries its own metadata");
+    return em::read_measurement_csv_file(file);
+  }
+  const bool profile = kind == MeasurementFileKind::roundness_profile;
+  if (!s.temperature_c)
+    setup_error(c, i, "setup.temperature_c",
+                "required: " + file + " is a plain " + (profile ? "profile" : "point file") +
+                    " with no metadata (the workpiece temperature reading, °C)");
+  if (!s.stylus_offset_mm)
+    setup_error(c, i, "setup.stylus_offset_mm",
+                "required: " + file + " has no metadata (the tip relative to the ram, [x, y, z] mm)");
+  if (!s.location_mm && (profile || s.frame == PointFrame::workpiece))
+    setup_error(c, i, "setup.location_mm",
+                "required for " + std::string(profile ? "a roundness-meter profile"
+                                                      : "points in the workpiece frame") +
+                    " (the ring centre in machine coordinates, [x, y, z] mm)");
+  if (profile && !s.radius_mm)
+    setup_error(c, i, "setup.radius_mm",
+                "required for a roundness-meter profile (the nominal radius of its deviations, mm)");
+  MeasurementSetup ms;
+  ms.mode = s.mode;
+  ms.temperature_c = s.temperature_c;
+  ms.orientation_deg = s.orientation_deg;
+  const auto vec = [](const std::array<double, 3>& a) { return Eigen::Vector3d(a[0], a[1], a[2]); };
+  if (s.location_mm) ms.location_mm = vec(*s.location_mm);
+  ms.stylus_offset_mm = vec(*s.stylus_offset_mm);
+  ms.frame = s.frame.value_or(PointFrame::machine);
+  ms.side = s.surface.value_or(SurfaceSide::inner);
+  ms.radius_mm = s.radius_mm;
+  ms.height_mm = s.profile_height_mm.value_or(0.0);
+  try {
+    return read_measurement_file(file, ms);
+  } catch (const geometry::InvalidInput& e) {
+    setup_error(c, i, "points", e.what());
+  }
+}
+
 /// The Monte Carlo summary of run (b) re-expressed about the estimate y: its bias b_dn
 /// = ȳ_dn − f(denoised) applied to y (so correct_bias(y, ·) gives y − b_dn).
 uncertainty::MeasurandSummary shifted(const uncertainty::MeasurandSummary& s, double by) {
@@ -145,10 +195,11 @@ void score(MeasurandOutcome& o, double k) {
 }
 
 /// The outcome of one measurand from the uncertainty evaluation: the study's run on x̂, the
-/// campaign's treatment (`chosen`) and the study's (`paper`).
+/// campaign's treatment (`chosen`) and the study's (`paper`). The note's numbers are given in
+/// the measurand's reporting unit (`scale` per mm, `unit`).
 void fill_outcome(MeasurandOutcome& o, double estimate, const uncertainty::MeasurandSummary& s,
                   const uncertainty::BiasCorrection& chosen, std::string_view treatment,
-                  const uncertainty::BiasCorrection& paper) {
+                  const uncertainty::BiasCorrection& paper, double scale, std::string_view unit) {
   o.estimate_mm = estimate;
   o.u_mm = s.standard_uncertainty;
   o.mc_mean_mm = s.mean;
@@ -161,7 +212,7 @@ void fill_outcome(MeasurandOutcome& o, double estimate, const uncertainty::Measu
   o.corrected_mm = chosen.corrected;
   o.u_corrected_mm = chosen.standard_uncertainty;
   o.correction_applied = chosen.applied;
-  o.note = chosen.note;
+  o.note = uncertainty::describe(chosen, scale, unit);
   o.bias_paper_mm = paper.bias;
   o.corrected_paper_mm = paper.corrected;
   o.u_corrected_paper_mm = paper.standard_uncertainty;
@@ -593,7 +644,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
       options.on_measurement(i, campaign.measurements.size(), entry.id, false);
     const auto m_start = std::chrono::steady_clock::now();
 
-    const em::Measurement measured = em::read_measurement_csv_file(entry.points_path.string());
+    const em::Measurement measured = read_entry_points(campaign, i);
     check_setup(campaign, i, measured);
 
     MeasurementOutcome m;
@@ -622,9 +673,9 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
       break;
     }
     fill_outcome(m.diameter, a.estimate.diameter_mm, a.monte_carlo.summaries[diameter],
-                 a.diameter, "paper", a.diameter);
+                 a.diameter, "paper", a.diameter, 1.0, "mm");
     fill_outcome(m.roundness, a.estimate.roundness_mm, a.monte_carlo.summaries[roundness],
-                 a.roundness, to_string(a.roundness_treatment), a.roundness_paper);
+                 a.roundness, to_string(a.roundness_treatment), a.roundness_paper, 1000.0, "µm");
 
     // Treatment (b): the same virtual experiment on the denoised virtual truth.
     m.diameter.corrected_denoised_mm = m.diameter.u_denoised_mm = kNaN;

@@ -32,14 +32,26 @@ errormodel::Measurement denoised_ring(const errormodel::Measurement& m, double c
 RingTrial::RingTrial(const errormodel::DigitalModel& model,
                      std::shared_ptr<const errormodel::PreparedMeasurement> prepared,
                      const RingEvaluationOptions& options, const errormodel::Stages& stages)
-    : model_(&model), prepared_(std::move(prepared)), options_(options), stages_(stages) {
+    : RingTrial(model, std::move(prepared), options, stages, stages) {}
+
+RingTrial::RingTrial(const errormodel::DigitalModel& model,
+                     std::shared_ptr<const errormodel::PreparedMeasurement> prepared,
+                     const RingEvaluationOptions& options, const errormodel::Stages& drawn,
+                     const errormodel::Stages& applied)
+    : model_(&model), prepared_(std::move(prepared)), options_(options), drawn_(drawn),
+      applied_(applied) {
   if (!prepared_) throw geometry::InvalidInput("RingTrial: no prepared measurement");
+  for (const errormodel::ErrorSource s : errormodel::all_error_sources) {
+    if (applied_.is_enabled(s) && !drawn_.is_enabled(s))
+      throw geometry::InvalidInput(std::string("RingTrial: the applied stage '") +
+                                   std::string(errormodel::to_string(s)) + "' is not drawn");
+  }
 }
 
 void RingTrial::operator()(uncertainty::RandomStream& rng, std::span<double> measurands) {
   StreamRandomSource source(rng);
-  errormodel::draw_errors(*model_, *prepared_, source, stages_, draw_);
-  errormodel::simulate_corrected(*prepared_, *model_, draw_, stages_,
+  errormodel::draw_errors(*model_, *prepared_, source, drawn_, draw_);
+  errormodel::simulate_corrected(*prepared_, *model_, draw_, applied_,
                                  errormodel::Formula::first_order, profile_);
   const RingMeasurands y = evaluate_ring(profile_, options_);
   measurands[diameter] = y.diameter_mm;
@@ -50,9 +62,17 @@ uncertainty::ExperimentFactory ring_experiment_factory(const errormodel::Digital
                                                        const errormodel::Measurement& best,
                                                        const RingEvaluationOptions& options,
                                                        const errormodel::Stages& stages) {
+  return ring_experiment_factory(model, best, options, stages, stages);
+}
+
+uncertainty::ExperimentFactory ring_experiment_factory(const errormodel::DigitalModel& model,
+                                                       const errormodel::Measurement& best,
+                                                       const RingEvaluationOptions& options,
+                                                       const errormodel::Stages& drawn,
+                                                       const errormodel::Stages& applied) {
   auto prepared = std::make_shared<const errormodel::PreparedMeasurement>(best, model);
-  return [&model, prepared, options, stages]() -> uncertainty::Experiment {
-    auto trial = std::make_shared<RingTrial>(model, prepared, options, stages);
+  return [&model, prepared, options, drawn, applied]() -> uncertainty::Experiment {
+    auto trial = std::make_shared<RingTrial>(model, prepared, options, drawn, applied);
     return [trial](uncertainty::RandomStream& rng, std::span<double> out) { (*trial)(rng, out); };
   };
 }
@@ -74,14 +94,15 @@ std::function<void(std::uint64_t, std::uint64_t)> offset_progress(
 }
 
 /// The shrinkage treatment (form_bias.h) after the first run: pilot, surrogate, second run.
+/// `later`: trials planned after this treatment (the budget's), for the progress total.
 void run_shrinkage(const errormodel::DigitalModel& model, const RingUncertaintyOptions& options,
-                   RingUncertaintyResult& result) {
+                   std::uint64_t later, RingUncertaintyResult& result) {
   const std::uint64_t m1 = result.monte_carlo.trials;
   const std::uint64_t m2 = options.shrinkage.surrogate_trials == 0
                                ? m1
                                : std::min(m1, options.shrinkage.surrogate_trials);
   const std::uint64_t pilot = options.shrinkage.pilot_trials;
-  const std::uint64_t total = m1 + pilot + m2;
+  const std::uint64_t total = m1 + pilot + m2 + later;
   SurrogateRun run;
   uncertainty::MonteCarloOptions pilot_run = options.monte_carlo;
   pilot_run.seed = uncertainty::derived_seed(options.monte_carlo.seed, kPilotPurpose);
@@ -122,13 +143,22 @@ RingUncertaintyResult run_on_surface(const errormodel::DigitalModel& model,
                                                options.stages);
   const bool shrinkage = options.roundness_bias == RoundnessBiasTreatment::shrinkage;
   uncertainty::MonteCarloOptions first = options.monte_carlo;
-  if (shrinkage && !options.adaptive) {
+  // Trials planned after the first run of m trials: the shrinkage's, the budget's.
+  const auto budget_planned = [&options](std::uint64_t m) -> std::uint64_t {
+    if (!options.budget) return 0;
+    std::uint64_t runs = 0;
+    for (const errormodel::ErrorSource s : errormodel::all_error_sources)
+      runs += options.stages.is_enabled(s) ? 1 : 0;
+    return runs * budget_trials(*options.budget, m);
+  };
+  if (!options.adaptive) {
     const std::uint64_t m = options.monte_carlo.trials;
     const std::uint64_t m2 = options.shrinkage.surrogate_trials == 0
                                  ? m
                                  : std::min(m, options.shrinkage.surrogate_trials);
-    first.progress = offset_progress(options.monte_carlo.progress, 0,
-                                     m + m2 + options.shrinkage.pilot_trials);
+    const std::uint64_t later =
+        (shrinkage ? m2 + options.shrinkage.pilot_trials : 0) + budget_planned(m);
+    if (later > 0) first.progress = offset_progress(options.monte_carlo.progress, 0, m + later);
   }
   result.monte_carlo =
       options.adaptive
@@ -142,8 +172,25 @@ RingUncertaintyResult run_on_surface(const errormodel::DigitalModel& model,
   result.roundness_paper = uncertainty::correct_bias(
       result.estimate.roundness_mm, result.monte_carlo.summaries[roundness], true);
   result.roundness = result.roundness_paper;
+  const std::uint64_t later = budget_planned(result.monte_carlo.trials);
   if (shrinkage && result.monte_carlo.status != uncertainty::RunStatus::cancelled)
-    run_shrinkage(model, options, result);
+    run_shrinkage(model, options, later, result);
+  if (options.budget && result.monte_carlo.status != uncertainty::RunStatus::cancelled) {
+    // Progress: the budget's runs come last, after every trial run so far.
+    const std::uint64_t before =
+        result.monte_carlo.trials + (result.surrogate ? result.surrogate->shrinkage.pilot_trials +
+                                                            result.surrogate->monte_carlo.trials
+                                                      : 0);
+    uncertainty::MonteCarloOptions mc = options.monte_carlo;
+    mc.progress = offset_progress(options.monte_carlo.progress, before, before + later);
+    result.budget = ring_uncertainty_budget(model, result.best_estimate, options.evaluation,
+                                            options.stages, result.monte_carlo, *options.budget,
+                                            mc);
+    if (!result.budget) {
+      result.monte_carlo.status = uncertainty::RunStatus::cancelled;
+      result.monte_carlo.message = "cancelled during the uncertainty budget's runs";
+    }
+  }
   return result;
 }
 

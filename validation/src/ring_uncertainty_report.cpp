@@ -1,7 +1,10 @@
 #include "vcmm/validation/ring_uncertainty_report.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -16,6 +19,7 @@ constexpr double kUmPerMm = 1000.0;
 struct MeasurandView {
   const char* name;
   const char* unit;
+  const char* prose_unit;  // the unit in sentences ("µm" where the key says "um")
   double scale;  // mm → unit
   const uncertainty::MeasurandSummary* summary;
   const uncertainty::BiasCorrection* correction;  // the reported treatment's
@@ -24,7 +28,8 @@ struct MeasurandView {
   double estimate;
 };
 
-nlohmann::json correction_json(const uncertainty::BiasCorrection& c, double scale) {
+nlohmann::json correction_json(const uncertainty::BiasCorrection& c, double scale,
+                               std::string_view prose_unit) {
   nlohmann::json j;
   j["bias"] = c.bias * scale;
   j["bias_standard_error"] = c.bias_standard_error * scale;
@@ -35,7 +40,7 @@ nlohmann::json correction_json(const uncertainty::BiasCorrection& c, double scal
   j["correction_applied"] = c.applied;
   j["correction_refused"] = c.refused;
   j["corrected_clamped_at_zero"] = c.clamped;
-  j["note"] = c.note;
+  j["note"] = uncertainty::describe(c, scale, prose_unit);
   return j;
 }
 
@@ -54,16 +59,159 @@ nlohmann::json measurand_json(const MeasurandView& v) {
       {"shortest_low", s.shortest.low * v.scale},
       {"shortest_high", s.shortest.high * v.scale}};
   j["bias_treatment"] = std::string(v.treatment);
-  j.update(correction_json(c, v.scale));
-  j["paper"] = correction_json(*v.paper, v.scale);
+  j.update(correction_json(c, v.scale, v.prose_unit));
+  j["paper"] = correction_json(*v.paper, v.scale, v.prose_unit);
   return j;
 }
 
 std::array<MeasurandView, 2> views(const RingUncertaintyResult& r) {
-  return {{{"diameter", "mm", 1.0, &r.monte_carlo.summaries.at(diameter), &r.diameter,
+  return {{{"diameter", "mm", "mm", 1.0, &r.monte_carlo.summaries.at(diameter), &r.diameter,
             &r.diameter, "paper", r.estimate.diameter_mm},
-           {"roundness", "um", kUmPerMm, &r.monte_carlo.summaries.at(roundness), &r.roundness,
+           {"roundness", "um", "µm", kUmPerMm, &r.monte_carlo.summaries.at(roundness), &r.roundness,
             &r.roundness_paper, to_string(r.roundness_treatment), r.estimate.roundness_mm}}};
+}
+
+/// Decimal places of a reported value in GUM style (JCGM 100 7.2.6): the standard
+/// uncertainty with two significant digits, every value of the measurand to the same place.
+/// 4 when u is 0 or not finite; at most 9.
+int gum_decimals(double u) {
+  if (!(u > 0.0) || !std::isfinite(u)) return 4;
+  const int d = 1 - static_cast<int>(std::floor(std::log10(u)));
+  return std::clamp(d, 0, 9);
+}
+
+/// Whether the quadrature sum agrees with the full u to Monte Carlo precision: the sample
+/// covariances of independent sources make the ratio differ from 1 by at most ~1/√(2M) (one
+/// standard error of u, relative); four of them (ring_uncertainty_budget.h, docs).
+bool adds_in_quadrature(double ratio, std::uint64_t trials) {
+  return std::abs(ratio - 1.0) <= 4.0 / std::sqrt(2.0 * static_cast<double>(trials - 1));
+}
+
+double ratio_of(double quadrature, double full) {
+  return full > 0.0 ? quadrature / full : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string budget_note(const UncertaintyBudget& b) {
+  std::string note =
+      "Each source alone (the others at their estimates), on the very random numbers it has in "
+      "the full run (common random numbers), " + std::to_string(b.trials) +
+      " trials a source. share_of_variance = u_i^2 / sum of u_j^2.";
+  const auto sentence = [&](const char* name, double ratio) {
+    std::string out = std::string(" ") + name + ": quadrature sum / full u = ";
+    if (!std::isfinite(ratio)) return out + "undefined (full u = 0).";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", ratio);
+    out += text;
+    if (adds_in_quadrature(ratio, b.trials))
+      return out + ", the u_i add in quadrature to Monte Carlo precision.";
+    return out + ", the u_i do NOT add in quadrature.";
+  };
+  note += sentence("Diameter", ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm));
+  note += sentence("Roundness", ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm));
+  note +=
+      " RONt is not linear in the errors (a peak-to-valley of summed deviations is not a sum; "
+      "each source alone biases it upward on its own): its u_i need not add in quadrature, and "
+      "its shares rank the sources rather than split u^2.";
+  return note;
+}
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json budget_json(const UncertaintyBudget& b) {
+  nlohmann::json sources = nlohmann::json::array();
+  for (const SourceContribution& c : b.sources) {
+    sources.push_back({{"source", std::string(errormodel::to_string(c.source))},
+                       {"evaluated", c.evaluated},
+                       {"diameter_u_mm", c.diameter_u_mm},
+                       {"roundness_u_um", c.roundness_u_mm * kUmPerMm},
+                       {"share_of_variance",
+                        {{"diameter", c.diameter_share}, {"roundness", c.roundness_share}}}});
+  }
+  return {{"method", "one source at a time, common random numbers"},
+          {"trials", b.trials},
+          {"wall_seconds", b.wall_seconds},
+          {"sources", std::move(sources)},
+          {"quadrature_sum",
+           {{"diameter_u_mm", b.diameter_quadrature_mm},
+            {"roundness_u_um", b.roundness_quadrature_mm * kUmPerMm},
+            {"full_diameter_u_mm", b.diameter_full_u_mm},
+            {"full_roundness_u_um", b.roundness_full_u_mm * kUmPerMm},
+            {"diameter_ratio",
+             number_or_null(ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm))},
+            {"roundness_ratio",
+             number_or_null(ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm))}}},
+          {"note", budget_note(b)}};
+}
+
+/// A share as a bar of `width` characters and a percentage: "######     54 %".
+std::string share_bar(double share) {
+  constexpr int width = 10;
+  const int n = static_cast<int>(std::lround(share * width));
+  char pct[16];
+  std::snprintf(pct, sizeof pct, " %3.0f %%", share * 100.0);
+  return std::string(static_cast<std::size_t>(n), '#') +
+         std::string(static_cast<std::size_t>(width - n), ' ') + pct;
+}
+
+/// `text` broken into lines of at most `width` characters at spaces, each indented by two.
+std::string wrapped(const std::string& text, std::size_t width) {
+  std::string out, line;
+  std::istringstream words(text);
+  std::string word;
+  while (words >> word) {
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      out += "  " + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  if (!line.empty()) out += "  " + line + "\n";
+  return out;
+}
+
+void budget_text(const UncertaintyBudget& b, std::ostringstream& os) {
+  char line[256];
+  os << "\nuncertainty budget: each source alone, common random numbers, " << b.trials
+     << " trials a source\n";
+  std::snprintf(line, sizeof line, "  %-16s %12s  %-16s %12s  %s\n", "source",
+                "u diam. (mm)", "share", "u RONt (um)", "share");
+  os << line;
+  // Every u to two significant digits of its own: the budget compares sizes.
+  const auto u_text = [](double u) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.*f", gum_decimals(u), u);
+    return std::string(t);
+  };
+  for (const SourceContribution& c : b.sources) {
+    const std::string name(to_string(c.source));
+    if (!c.evaluated) {
+      std::snprintf(line, sizeof line, "  %-16s %12s\n", name.c_str(), "(switched off)");
+    } else {
+      std::snprintf(line, sizeof line, "  %-16s %12s  %-16s %12s  %s\n", name.c_str(),
+                    u_text(c.diameter_u_mm).c_str(), share_bar(c.diameter_share).c_str(),
+                    u_text(c.roundness_u_mm * kUmPerMm).c_str(),
+                    share_bar(c.roundness_share).c_str());
+    }
+    os << line;
+  }
+  const auto row = [&](const char* label, const std::string& d, const std::string& r) {
+    std::snprintf(line, sizeof line, "  %-16s %12s  %16s %12s\n", label, d.c_str(), "",
+                  r.c_str());
+    os << line;
+  };
+  row("sqrt(sum u_i^2)", u_text(b.diameter_quadrature_mm),
+      u_text(b.roundness_quadrature_mm * kUmPerMm));
+  row("full run u", u_text(b.diameter_full_u_mm), u_text(b.roundness_full_u_mm * kUmPerMm));
+  const auto ratio_text = [](double r) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.3f", r);
+    return std::isfinite(r) ? std::string(t) : std::string("-");
+  };
+  row("ratio", ratio_text(ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm)),
+      ratio_text(ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm)));
+  os << wrapped(budget_note(b), 94);
 }
 
 }  // namespace
@@ -113,6 +261,7 @@ std::string ring_uncertainty_json(const RingUncertaintyResult& result,
         {"u_of_surrogate_estimate", z.standard_uncertainty * kUmPerMm}};
   }
   if (mc.correlation.size() == 4) j["correlation_diameter_roundness"] = mc.correlation[1];
+  if (result.budget) j["budget"] = budget_json(*result.budget);
   return j.dump(2) + "\n";
 }
 
@@ -146,7 +295,7 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
   for (const MeasurandView& v : views(result)) {
     const auto& s = *v.summary;
     const auto& c = *v.correction;
-    const int digits = v.scale == 1.0 ? 6 : 4;
+    const int digits = gum_decimals(s.standard_uncertainty * v.scale);
     os << "\n" << v.name << " (" << v.unit << ")\n";
     auto row = [&](const char* label, double value) {
       std::snprintf(line, sizeof line, "  %-28s %.*f\n", label, digits, value * v.scale);
@@ -155,16 +304,21 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
     row("estimate from data", v.estimate);
     row("Monte Carlo mean", s.mean);
     row("standard uncertainty u", s.standard_uncertainty);
-    std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n",
-                  (std::to_string(static_cast<int>(p * 100.0 + 0.5)) +
-                   " % interval (symmetric)").c_str(),
-                  digits, s.probabilistically_symmetric.low * v.scale, digits,
-                  s.probabilistically_symmetric.high * v.scale);
-    os << line;
+    row("expanded U (k = 2)", 2.0 * s.standard_uncertainty);
+    const std::string percent = std::to_string(static_cast<int>(p * 100.0 + 0.5)) + " % interval";
+    for (const auto& [kind, ci] : {std::pair{" (symmetric)", &s.probabilistically_symmetric},
+                                   std::pair{" (shortest)", &s.shortest}}) {
+      std::snprintf(line, sizeof line, "  %-28s [%.*f, %.*f]\n", (percent + kind).c_str(), digits,
+                    ci->low * v.scale, digits, ci->high * v.scale);
+      os << line;
+    }
     const auto treatment_rows = [&](const uncertainty::BiasCorrection& t, bool surrogate) {
+      // The bias to the place of its own Monte Carlo standard error (at least the
+      // measurand's): −0.0000040 (MC standard error 0.0000066), never "-0.00000".
+      const int bias_digits = std::max(digits, gum_decimals(t.bias_standard_error * v.scale));
       std::snprintf(line, sizeof line, "  %-28s %.*f (MC standard error %.*f)\n",
-                    surrogate ? "bias (at the surrogate)" : "bias (mean - estimate)", digits,
-                    t.bias * v.scale, digits, t.bias_standard_error * v.scale);
+                    surrogate ? "bias (at the surrogate)" : "bias (mean - estimate)",
+                    bias_digits, t.bias * v.scale, bias_digits, t.bias_standard_error * v.scale);
       os << line;
       if (surrogate) row("u of the bias estimate", t.bias_uncertainty);
       row(t.applied ? "corrected estimate" : "reported (uncorrected)", t.corrected);
@@ -181,7 +335,6 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
       os << "  -- the seed study's treatment (bias of the Monte Carlo on the measured data)\n";
     }
     treatment_rows(*v.paper, false);
-    // (The engine's note carries the numbers in the library's unit, mm: the JSON keeps it.)
     os << "  correction: "
        << (v.paper->applied
                ? "applied (the interval is the Monte Carlo interval reflected about the "
@@ -190,6 +343,7 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
                  "reported with u enlarged by |bias| and the interval widened by |bias|")
        << "\n";
   }
+  if (result.budget) budget_text(*result.budget, os);
   return os.str();
 }
 

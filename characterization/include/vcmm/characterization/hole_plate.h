@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "vcmm/characterization/consistency.h"
 #include "vcmm/errormodel/kinematic_errors.h"
 #include "vcmm/errormodel/random_source.h"
 
@@ -49,6 +50,8 @@ struct HolePlate {
   Eigen::Matrix3Xd calibrated_mm;       ///< 3×F, plate frame (mm)
   std::vector<double> calibration_u_mm; ///< F values ≥ 0: standard uncertainty of each
                                         ///< calibrated coordinate (isotropic, mm)
+  std::string source;               ///< the file it was read from (messages; may be empty)
+  std::vector<std::size_t> lines;   ///< 1-based file line of each feature (empty: built in code)
 };
 
 /// A rigid pose, plate → machine: m = rotation · c + translation_mm.
@@ -72,6 +75,8 @@ struct HolePlatePlacement {
   std::vector<std::string> ids;   ///< features measured (plate ids, each at most once)
   Eigen::Matrix3Xd measured_mm;   ///< 3×n feature centres, machine coordinates (mm), tip centre
   Eigen::Vector3d stylus_offset_mm = Eigen::Vector3d::Zero();  ///< t (errormodel convention)
+  std::string source;               ///< the file it was read from (messages; may be empty)
+  std::vector<std::size_t> lines;   ///< 1-based file line of each centre (empty: built in code)
 };
 
 /// The same degree for all 18 error functions.
@@ -188,6 +193,14 @@ struct KinematicCharacterization {
   double probing_sigma_from_residuals_mm = 0.0;  ///< σ·s0: the σ that would make s0² = 1
   double weakest_direction = 0.0;  ///< smallest kept / largest singular value (scaled)
   int iterations = 0;
+  /// The residuals against σ (measured centres) and u_i (the calibration's pseudo-observations)
+  /// with the leverages of the weighted Jacobian at the solution: χ² with ν =
+  /// degrees_of_freedom (χ² = ν·variance_factor) and the outlier test (consistency.h). Each
+  /// residual is named by its placement (source file, else name), file line, feature id and
+  /// coordinate; a calibration residual by the plate file and feature. A caller must not use
+  /// the model when !consistency.passed() unless it says so (the CLI refuses it, exit 3, or
+  /// records it with --accept-inconsistent).
+  ConsistencyTest consistency;
 };
 
 /// Estimates the kinematic errors (file comment; docs/characterization.md) from the plate and
@@ -198,7 +211,8 @@ struct KinematicCharacterization {
 /// as errormodel); the features of each setup not collinear; options: chain valid, ranges
 /// finite with min < max, degrees 0 … max_legendre_degree, σ finite > 0, tolerance in (0, 1),
 /// a-priori u finite ≥ 0, max_iterations ≥ 1. A plan that leaves parameters unidentified is
-/// not an error: they are reported (status, null_directions, message).
+/// not an error: they are reported (status, null_directions, message). Two placements with the
+/// same ids and bit-identical centres are refused (one measurement given twice).
 /// Accuracy: the least-squares solution to rounding. The first-order tip error is evaluated at
 /// the true positions w of the starting poses rather than at the readings p = w + e (so that
 /// invisible directions are exactly invisible): a model error of second order, |e|·|∇e| — e.g.
@@ -231,14 +245,19 @@ std::string kinematics_json(const errormodel::KinematicModel& model, std::string
 /// "comment" listing the gauge convention, the not-identifiable coefficients and the invisible
 /// combinations, and a per-function "comment" naming its coefficients' status. Loadable by
 /// errormodel::parse_digital_model when placed under "kinematics" in a model file. Throws
-/// InvalidInput if !result.usable.
+/// InvalidInput if !result.usable, if a number is not finite, or if a coefficient or its
+/// uncertainty exceeds the physical range of a CMM's kinematic errors (1 mm, 1 mrad), naming
+/// the parameter and `source`. The consistency verdict is part of the section comment.
 std::string kinematics_json_section(const KinematicCharacterization& result,
                                     std::string_view source);
 
 /// The diagnostics as JSON text (docs/characterization.md): status, message, counts, σ given
 /// and from residuals, variance factor, per-parameter value/u/status (µm, µrad), null
-/// directions, setup poses, per-placement residual RMS.
-std::string hole_plate_report_json(const KinematicCharacterization& result);
+/// directions, setup poses, per-placement residual RMS, the consistency test (χ², Birge ratio,
+/// p, outliers; `accepted_inconsistent` records a failed test that the user overrode).
+/// Throws InvalidInput if a number is not finite.
+std::string hole_plate_report_json(const KinematicCharacterization& result,
+                                   bool accepted_inconsistent = false);
 
 // ---- files (docs/characterization.md, "File formats") --------------------------------------
 

@@ -84,6 +84,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vcmm/characterization/consistency.h"
 #include "vcmm/geometry/point.h"
 #include "vcmm/geometry/roundness_profile.h"
 
@@ -170,6 +171,11 @@ struct SystematicProfile {
   double noise_variance_mm2 = 0.0;   ///< v: variance of the scan noise left in s, per point
 };
 
+/// The family-wise level of each outlier test of the noise characterisation. The whole
+/// false-refusal level goes to outliers (σ is what is estimated: there is no χ² test), split
+/// over the at most three data sets of one characterisation (scan, repeat difference, touch).
+inline constexpr double kNoiseOutlierLevel = kFalseRefusalLevel / 3.0;
+
 struct ScanNoiseResult {
   SigmaEstimate sigma;  ///< radial white-noise σ (noise and roughness together: one scan)
   std::size_t points = 0;
@@ -186,6 +192,11 @@ struct ScanNoiseResult {
   double low_pass_rms_mm = 0.0;   ///< rms of L d: the CMM's systematic part (and drift)
   double high_pass_rms_mm = 0.0;  ///< rms of h (before the Λ/n correction)
   SystematicProfile systematic;   ///< L d: for touch_trigger_noise on the same set-up
+  /// Outliers of the high-pass residual h = (I − L)(e − g): each h_i has the variance σ²Λ/n
+  /// (circulant filter), tested studentized against the scale of all points, Bonferroni over
+  /// the n points at kNoiseOutlierLevel; named "point i (at θ deg)", i 1-based in file order
+  /// (consistency.h; a dust particle or a probe bounce would otherwise raise σ̂).
+  ConsistencyTest consistency;
 };
 
 /// The noise σ of a dense equiangular scan (file comment). `scan`: the profile in machine XY
@@ -210,6 +221,9 @@ struct TouchNoiseResult {
   geometry::Point2 center_mm;
   double radius_mm = 0.0;
   std::vector<double> residuals_mm;  ///< after the reference (and profile) and the circle fit
+  /// Outliers of the residuals (studentized with the circle fit's leverages, ν = n − 3,
+  /// Bonferroni at kNoiseOutlierLevel), named "point i (at θ deg)" (consistency.h).
+  ConsistencyTest consistency;
 };
 
 /// The noise σ of sparse touch-trigger points (file comment, "Touch-trigger"): the reference
@@ -241,6 +255,9 @@ struct RepeatedScanResult {
   ScanNoiseResult first;                  ///< the first scan alone (σ of noise + roughness)
   /// L of the mean of the two scans minus the reference (v = S₊ (1/n) Σ H²): for touch data.
   SystematicProfile systematic;
+  /// Outliers of the high-pass difference of the scans (variance 2σ_n²Λ/n per point), as
+  /// ScanNoiseResult::consistency: the point named is in one of the two scans.
+  ConsistencyTest difference_consistency;
 };
 
 /// Noise and roughness from two scans of the same track (file comment). Both scans must have
@@ -283,6 +300,7 @@ std::optional<std::string> roughness_section_json(const NoiseCharacterization& c
 /// parts; the roughness status or "not identifiable from a single scan"}}.
 std::string noise_characterization_json(
     const NoiseCharacterization& c, std::optional<double> fallback_scanning_sigma_mm = std::nullopt,
-    std::optional<double> fallback_touch_sigma_mm = std::nullopt);
+    std::optional<double> fallback_touch_sigma_mm = std::nullopt,
+    bool accepted_inconsistent = false);
 
 }  // namespace vcmm::characterization

@@ -43,11 +43,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "vcmm/characterization/consistency.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/measurement.h"
 
@@ -64,6 +66,13 @@ struct SphereProbeOptions {
   /// Orders k of the directional series to estimate (1 … max_probe_harmonic_order, any order,
   /// duplicates ignored). Order 1 is accepted but never estimated (file comment).
   std::vector<int> orders = {2, 3, 4};
+  /// σ_p: the standard deviation of the CMM's probing noise along the normal, for one point
+  /// (mm, finite, > 0), stated from elsewhere (the noise characterisation, the CMM's
+  /// specification). With it, the consistency test compares the residuals with the stated
+  /// u_i² = σ_p² + F²/12 (noise plus the sphere's form as a rectangular distribution over ±F/2):
+  /// χ² and outliers (consistency.h). Without it, only the outlier test by studentized
+  /// residuals is possible (σ is then estimated from the same residuals).
+  std::optional<double> probing_sigma_mm;
 };
 
 /// Below this singular value of A/√N a parameter combination counts as not identifiable.
@@ -119,13 +128,20 @@ struct SphereProbeCharacterization {
   double min_singular_value = 0.0;   ///< smallest singular value of A/√N
   std::vector<double> residuals_mm;  ///< ρ_i, in input order
   int iterations = 0;
+  /// The residuals against the stated σ_p and form (or studentized, without σ_p), each named
+  /// "point i (x, y, z)" (1-based, input order; consistency.h). Not part of `usable`: a caller
+  /// refuses the result when !consistency.passed() unless told otherwise (the CLI: exit 3, or
+  /// --accept-inconsistent).
+  ConsistencyTest consistency;
 };
 
 /// Estimates the probe section from N points measured on a calibrated sphere (file comment).
 /// `points_mm`: 3×N, machine coordinates (mm), one probing per point, probing directions
 /// along the sphere normal (as a CMM probes a sphere). Preconditions (InvalidInput, message
 /// names the function, rule and value/index): every coordinate finite; sphere diameter
-/// finite > 0, u and form finite ≥ 0; orders within 1 … max_probe_harmonic_order; N ≥ p + 3
+/// finite > 0, u and form finite, ≥ 0 and at most 1 % of the diameter (a certificate's u and
+/// form are well below that; more means wrong units); probing σ, when given, finite > 0 and at
+/// most 1 % of the radius; orders within 1 … max_probe_harmonic_order; N ≥ p + 3
 /// (ν ≥ 3 for the t factor); the points must lie on a sphere — the fitted diameter within 1 %
 /// of D_cal (probe errors are micrometres: a larger difference means the wrong sphere or
 /// units) and every residual below 1 % of R_cal. A design in which a combination is not
@@ -142,14 +158,18 @@ SphereProbeCharacterization characterize_probe_sphere(const Eigen::Matrix3Xd& po
 /// "source", "tip_radius_error" and "directional_error", values in µm; the format of
 /// docs/errormodel.md, loadable by errormodel::parse_digital_model when placed under "probe" in
 /// a model file). `source` says where the data came from (file name, date); the method, N, ν
-/// and the identifiability note are appended. Throws InvalidInput if !result.usable.
+/// and the identifiability note are appended. Throws InvalidInput if !result.usable or a number
+/// is not finite.
 std::string probe_section_json(const SphereProbeCharacterization& result, std::string_view source);
 
 /// The whole output of `vcmm characterize sphere`: {"probe": <probe_section_json>,
 /// "characterization": {diagnostics: centre, diameter, ν, s, residual range, budget per
-/// parameter, not-identifiable list, status}} (docs/characterization.md). Usable results only.
+/// parameter, not-identifiable list, status, consistency}} (docs/characterization.md). Usable
+/// results only; `accepted_inconsistent` records a failed consistency test the user overrode.
+/// Throws InvalidInput naming the key and `source` if a number is not finite.
 std::string probe_characterization_json(const SphereProbeCharacterization& result,
-                                        std::string_view source);
+                                        std::string_view source,
+                                        bool accepted_inconsistent = false);
 
 // ---- measurement plans and simulated calibration data ----------------------------------
 

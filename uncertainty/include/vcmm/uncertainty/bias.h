@@ -19,6 +19,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "vcmm/uncertainty/statistics.h"
 
@@ -42,8 +43,22 @@ struct BiasCorrection {
   /// (correct_bias: the study's treatment takes b as exact up to its Monte Carlo error).
   double bias_uncertainty = 0;
   bool clamped = false;         ///< corrected value below 0 set to 0 (correct_bias_at_surrogate)
-  std::string note;             ///< one sentence saying what was done and why
+  /// How the bias was evaluated: at the data (correct_bias) or at a surrogate truth
+  /// (correct_bias_at_surrogate, whose f(ŝ) is `surrogate_value`).
+  bool at_surrogate = false;
+  double surrogate_value = 0;
+  double corrected_unclamped = 0;     ///< x − b before clamping at 0
+  bool interval_low_clamped = false;  ///< the interval's lower end set to 0
+  bool interval_high_truncated = false;  ///< its upper end from the truncated normal
+  /// One sentence saying what was done and why, numbers in the quantity's own unit
+  /// (describe(c) of the fields above).
+  std::string note;
 };
+
+/// The note of a correction with its numbers multiplied by `scale` and followed by `unit`
+/// (e.g. 1000, "µm" for a roundness computed in mm), so that a report's prose and its numbers
+/// agree. 4 significant digits. describe(c) (scale 1, no unit) is c.note.
+std::string describe(const BiasCorrection& c, double scale = 1.0, std::string_view unit = {});
 
 /// bias = mean − estimate; corrected = estimate − bias. If `non_negative` and the corrected
 /// value is < 0, the correction is refused: reported value = estimate (uncorrected),
@@ -73,7 +88,9 @@ BiasCorrection correct_bias(double estimate, const MeasurandSummary& summary,
 /// with [y_low, y_high] the probabilistically symmetric interval of the y*, k_p the normal
 /// coverage factor of its probability (1.96 for 0.95): the Monte Carlo interval reflected
 /// about the corrected value and widened by the bias uncertainty taken as normal; its lower
-/// end clamped at 0 for a non-negative quantity.
+/// end clamped at 0 for a non-negative quantity, whose upper end is then at least the q of
+/// N(y − b, u_c²) truncated to [0, ∞) with P(0 ≤ X ≤ q) = p·P(X ≥ 0) (so the interval never
+/// ends below 0 when the uncorrected value lies far below the bias).
 /// Throws InvalidInput for NaN/inf inputs, a count of 0, a negative standard uncertainty, an
 /// interval with low > high, or `non_negative` with a negative estimate or f_s. O(1).
 BiasCorrection correct_bias_at_surrogate(double estimate, double surrogate_value,

@@ -29,6 +29,7 @@
 #include "vcmm/errormodel/measurement.h"
 #include "vcmm/geometry/point.h"
 #include "vcmm/validation/form_bias.h"
+#include "vcmm/validation/measurement_input.h"
 #include "vcmm/validation/reference_values.h"
 
 namespace vcmm::validation {
@@ -103,7 +104,19 @@ struct Setup {
   Height height = Height::middle;
   errormodel::ProbingMode mode = errormodel::ProbingMode::scanning;
   std::optional<double> temperature_c;  ///< the workpiece temperature reading (°C)
+  /// Plain point files and roundness-meter profiles only (docs/validation.md, "Plain point
+  /// files"): what vcmm's measurement CSV carries in its header. temperature_c and
+  /// stylus_offset_mm are then required; location_mm for workpiece frames and profiles.
+  std::optional<std::array<double, 3>> stylus_offset_mm;  ///< tip relative to the ram (mm)
+  std::optional<PointFrame> frame;      ///< default machine
+  std::optional<SurfaceSide> surface;   ///< default inner
+  std::optional<double> radius_mm;      ///< profiles: nominal radius of the deviations
+  std::optional<double> profile_height_mm;  ///< profiles: workpiece z of the profile (mm)
 
+  /// True when a plain-file-only key is set.
+  bool has_plain_file_keys() const {
+    return stylus_offset_mm || frame || surface || radius_mm || profile_height_mm;
+  }
   double orientation_rad() const { return orientation_deg / 180.0 * std::numbers::pi; }
   friend bool operator==(const Setup&, const Setup&) = default;
 };

@@ -36,6 +36,7 @@
 #include "vcmm/validation/form_bias.h"
 #include "vcmm/validation/reference_values.h"  // ReferenceCircle
 #include "vcmm/validation/ring_evaluation.h"
+#include "vcmm/validation/ring_uncertainty_budget.h"
 
 namespace vcmm::validation {
 
@@ -54,6 +55,13 @@ class RingTrial {
   RingTrial(const errormodel::DigitalModel& model,
             std::shared_ptr<const errormodel::PreparedMeasurement> prepared,
             const RingEvaluationOptions& options, const errormodel::Stages& stages);
+  /// Draws the errors of the `drawn` stages but simulates and corrects only the `applied` ones
+  /// (a subset): each applied source then gets the very numbers it gets in the run of all
+  /// `drawn` stages with the same seed (common random numbers: ring_uncertainty_budget.h).
+  RingTrial(const errormodel::DigitalModel& model,
+            std::shared_ptr<const errormodel::PreparedMeasurement> prepared,
+            const RingEvaluationOptions& options, const errormodel::Stages& drawn,
+            const errormodel::Stages& applied);
   /// Draws all error sources from `rng`, computes correct(simulate(x̂, e)) in one fused pass
   /// (errormodel::simulate_corrected, first-order kinematics), evaluates; writes
   /// measurands[diameter] (mm) and measurands[roundness] (mm).
@@ -63,7 +71,8 @@ class RingTrial {
   const errormodel::DigitalModel* model_;
   std::shared_ptr<const errormodel::PreparedMeasurement> prepared_;
   RingEvaluationOptions options_;
-  errormodel::Stages stages_;
+  errormodel::Stages drawn_;
+  errormodel::Stages applied_;
   errormodel::ErrorDraw draw_;
   std::vector<geometry::Point2> profile_;
 };
@@ -73,6 +82,12 @@ uncertainty::ExperimentFactory ring_experiment_factory(const errormodel::Digital
                                                        const errormodel::Measurement& best,
                                                        const RingEvaluationOptions& options,
                                                        const errormodel::Stages& stages);
+/// The same, drawing the `drawn` stages and applying only `applied` (RingTrial above).
+uncertainty::ExperimentFactory ring_experiment_factory(const errormodel::DigitalModel& model,
+                                                       const errormodel::Measurement& best,
+                                                       const RingEvaluationOptions& options,
+                                                       const errormodel::Stages& drawn,
+                                                       const errormodel::Stages& applied);
 
 /// Options of one uncertainty evaluation.
 struct RingUncertaintyOptions {
@@ -82,6 +97,8 @@ struct RingUncertaintyOptions {
   std::optional<uncertainty::AdaptiveOptions> adaptive; ///< set: JCGM 101 7.9 instead of fixed M
   RoundnessBiasTreatment roundness_bias = RoundnessBiasTreatment::shrinkage;
   ShrinkageOptions shrinkage;  ///< the shrinkage treatment's tunables
+  /// Set: also the uncertainty budget (ring_uncertainty_budget.h), one more run per source.
+  std::optional<BudgetOptions> budget;
   /// Written into the report's "provenance" object beside the vcmm version and revision
   /// (e.g. model_file, model_sha256, points_file, points_sha256: provenance.h).
   std::map<std::string, std::string> provenance;
@@ -106,15 +123,19 @@ struct RingUncertaintyResult {
   uncertainty::BiasCorrection roundness_paper;
   RoundnessBiasTreatment roundness_treatment = RoundnessBiasTreatment::shrinkage;
   std::optional<SurrogateRun> surrogate;  ///< set by the shrinkage treatment
+  /// Set when options.budget asks for it (per source, of the first run `monte_carlo`).
+  std::optional<UncertaintyBudget> budget;
 };
 
 /// Uncertainty of the diameter and roundness of one ring measurement (file comment).
 /// `measured` is what the CMM reported (validated: InvalidInput); the model is applied with
 /// the given stages. The shrinkage treatment adds a pilot run (options.shrinkage.pilot_trials)
 /// and a second run of min(trials completed, options.shrinkage.surrogate_trials) trials, seeded by
-/// uncertainty::derived_seed(seed, 1) and (seed, 2). Throws as the pieces; the Monte Carlo
-/// result's status says whether it completed, converged or was cancelled (a cancelled first
-/// run skips the second: surrogate empty, roundness = the study's). O(M · n log n).
+/// uncertainty::derived_seed(seed, 1) and (seed, 2). options.budget adds one run per enabled
+/// source with the first run's seed (ring_uncertainty_budget.h), after the others. Throws as
+/// the pieces; the Monte Carlo result's status says whether it completed, converged or was
+/// cancelled (a cancelled first run skips the second: surrogate empty, roundness = the
+/// study's; a cancelled budget leaves `budget` empty). O(M · n log n).
 RingUncertaintyResult evaluate_ring_uncertainty(const errormodel::DigitalModel& model,
                                                 const errormodel::Measurement& measured,
                                                 const RingUncertaintyOptions& options);

@@ -21,6 +21,7 @@
 
 #include "atomic_file.h"
 #include "commands.h"
+#include "option_values.h"
 #include "run_control.h"
 #include "vcmm/characterization/hole_plate.h"
 #include "vcmm/characterization/identical_inputs.h"
@@ -257,7 +258,8 @@ void add_characterize_hole_plate_command(CLI::App& characterize, int* exit_code)
       ->required();
   cmd->add_option("--probing-sigma-um", opts->probing_sigma_um,
                   "standard deviation of one coordinate of a measured feature centre (um)")
-      ->required();
+      ->required()
+      ->check(physical_value(em::physical_range::length_sigma_um, /*open_below=*/true));
   cmd->add_option("--axis-range", opts->axis_ranges,
                   "travel of an axis, AXIS=MIN,MAX in mm (give X, Y and Z), e.g. X=0,1200");
   cmd->add_option("--model", opts->model,

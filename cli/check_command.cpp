@@ -131,15 +131,9 @@ Outcome run_check(const std::string& file, const g::ClaimedCircle& claim, const 
     if (s.filter_upr) pts = g::gaussian_filtered_profile(pts, *s.filter_upr).points;
     o.check = g::check_claimed_circle(pts, claim);
     o.exit_code = o.check.optimal ? kOk : kClaimFails;
-  } catch (const g::InvalidInput& e) {
-    o.exit_code = kInvalidInput;
-    o.error = e.what();
-  } catch (const g::UndefinedResult& e) {
-    o.exit_code = kUndefined;
-    o.error = e.what();
   } catch (const std::exception& e) {
-    o.exit_code = kFailure;
-    o.error = std::string("internal error (a bug: please report it with the input): ") + e.what();
+    o.exit_code = exit_code_of(e);
+    o.error = error_text(e);
   }
   return o;
 }

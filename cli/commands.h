@@ -14,6 +14,7 @@ enum ExitCode : int {
   kInvalidInput = 3,   ///< input file or values rejected (message names file/line/value)
   kUndefined = 4,      ///< valid input, but the quantity does not exist for it
   kClaimFails = 5,     ///< `vcmm check`: the claimed circle is infeasible or not optimal
+  kInterrupted = 130,  ///< stopped by Ctrl-C (128 + SIGINT, the shell convention)
 };
 
 /// Registers `vcmm roundness`; the callback stores its exit code in `*exit_code`.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "run_control.h"
 #include "vcmm/geometry/certificate.h"
 
 namespace vcmm::cli {
@@ -92,7 +93,7 @@ nlohmann::ordered_json to_json(std::span<const g::Point2> profile, const g::Roun
   if (e.minimum_circumscribed)
     out["MC"] = single_radius_json(profile, *e.minimum_circumscribed);
   for (const auto& [circle, reason] : e.undefined)
-    out[std::string(g::to_string(circle))] = {{"defined", false}, {"reason", reason}};
+    out[std::string(g::to_string(circle))] = {{"defined", false}, {"reason", user_message(reason)}};
   for (const auto& [circle, caution] : e.cautions)
     out[std::string(g::to_string(circle))]["caution"] = caution;
   return out;

@@ -88,12 +88,9 @@ FileResult evaluate_file(const std::string& file, const Plan& plan) {
       r.harmonics.emplace(profile, ls.center, ls.radius, order);
     }
     r.exit_code = r.evaluation.defined_count() > 0 ? kOk : kUndefined;
-  } catch (const g::InvalidInput& e) {
-    r.exit_code = kInvalidInput;
-    r.error = e.what();
   } catch (const std::exception& e) {
-    r.exit_code = kFailure;
-    r.error = std::string("internal error (a bug: please report it with the input): ") + e.what();
+    r.exit_code = exit_code_of(e);
+    r.error = error_text(e);
   }
   return r;
 }
@@ -155,7 +152,7 @@ std::string format_table(const FileResult& r) {
        {g::ReferenceCircle::least_squares, g::ReferenceCircle::minimum_zone,
         g::ReferenceCircle::maximum_inscribed, g::ReferenceCircle::minimum_circumscribed}) {
     if (const auto u = e.undefined.find(which); u != e.undefined.end()) {
-      os << std::string(g::to_string(which)) << "  undefined: " << u->second << "\n";
+      os << std::string(g::to_string(which)) << "  undefined: " << user_message(u->second) << "\n";
       continue;
     }
     switch (which) {
@@ -208,7 +205,7 @@ json result_json(const FileResult& r) {
   j["schema_version"] = kRoundnessSchemaVersion;
   j["file"] = r.file;
   j["unit"] = "mm";
-  if (r.exit_code == kInvalidInput || r.exit_code == kFailure) {
+  if (!r.error.empty()) {
     j["status"] = "error";
     j["error"] = r.error;
     return j;
@@ -232,7 +229,7 @@ constexpr const char* kCsvHeader =
 
 std::string csv_row(const FileResult& r) {
   std::string row = csv_cell(r.file) + ",";
-  if (r.exit_code == kInvalidInput || r.exit_code == kFailure)
+  if (!r.error.empty())
     return row + "error" + std::string(25, ',') + csv_cell(r.error) + "\n";
   const g::RoundnessEvaluation& e = r.evaluation;
   const auto profile = r.profile();
@@ -266,7 +263,7 @@ std::string csv_row(const FileResult& r) {
   std::string message;
   for (const auto& [circle, reason] : e.undefined)
     message += (message.empty() ? "" : "; ") + std::string(g::to_string(circle)) +
-               " undefined: " + reason;
+               " undefined: " + user_message(reason);
   for (const auto& [circle, caution] : e.cautions)
     message += (message.empty() ? "" : "; ") + std::string(g::to_string(circle)) + ": " + caution;
   return row + "," + csv_cell(message) + "\n";
@@ -320,7 +317,7 @@ int run_roundness(const RoundnessOptions& o) {
     const std::vector<std::string> files = expand_inputs(o.files, batch);
     if (!batch) {
       const FileResult r = evaluate_file(files.at(0), plan);
-      if (r.exit_code == kInvalidInput || r.exit_code == kFailure) {
+      if (!r.error.empty()) {
         std::cerr << "vcmm roundness: error: " << r.error << "\n";
         return r.exit_code;
       }
@@ -405,6 +402,7 @@ void add_roundness_command(CLI::App& app, int* exit_code) {
       ->default_val("mm");
   cmd->add_flag("--json", opts->json, "JSON: one object (one file) or one line per file");
   cmd->add_option("--threads", opts->threads, "batch: files evaluated at once (default: cores)")
+      ->check(thread_count())
       ->default_val(0);
   cmd->add_option("-o,--output", opts->output, "write the result to this file (atomically)");
   cmd->callback([opts, exit_code] { *exit_code = run_roundness(*opts); });

@@ -8,12 +8,17 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <ios>
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "commands.h"
 #include "vcmm/errormodel/atomic_file.h"
+#include "vcmm/geometry/point.h"
 #include "vcmm/uncertainty/errors.h"
 
 namespace vcmm::cli {
@@ -83,30 +88,136 @@ void ProgressBar::finish() {
 
 namespace vcmm::cli {
 
+namespace {
+
+/// Library functions whose name can open a message that reaches a user, and the operation
+/// the user asked for instead.
+constexpr std::pair<std::string_view, std::string_view> kOperations[] = {
+    {"least_squares_circle", "LS circle"},
+    {"minimum_zone_circle", "MZ circle"},
+    {"minimum_zone_overlay", "MZ circle"},
+    {"make_minimum_zone_result", "MZ circle"},
+    {"make_cocircular_result", "reference circle"},
+    {"exact_circumcircle", "reference circle"},
+    {"maximum_inscribed_circle", "MI circle"},
+    {"minimum_circumscribed_circle", "MC circle"},
+    {"gaussian_filtered_profile", "Gaussian filter (ISO 16610-21)"},
+    {"gaussian_filter_closed", "Gaussian filter (ISO 16610-21)"},
+    {"gaussian_filtered_open_profile", "Gaussian filter (ISO 16610-21, open profile)"},
+    {"angular_coverage", "angular coverage"},
+    {"roundness_parameters", "roundness parameters"},
+    {"check_claimed_circle", "claim check"},
+    {"run_monte_carlo", "Monte Carlo"},
+    {"run_adaptive_monte_carlo", "adaptive Monte Carlo"},
+    {"minimum_sample_count", "Monte Carlo"},
+    {"default_block_size", "adaptive Monte Carlo"},
+    {"summarize_measurand", "Monte Carlo statistics"},
+    {"correct_bias", "bias correction"},
+    {"correct_bias_at_surrogate", "bias correction (shrinkage treatment)"},
+    {"estimate_harmonic_shrinkage", "shrinkage treatment"},
+    {"evaluate_ring", "ring evaluation"},
+    {"simulate", "virtual CMM"},
+    {"simulate_corrected", "virtual CMM"},
+    {"correct", "correction of systematic errors"},
+    {"tip_errors", "kinematic errors"},
+    {"ring_gauge_measurement", "ring gauge"},
+    {"run_campaign", "campaign"},
+    {"make_demo_world", "demo world"},
+    {"evaluate_roundness_reference", "roundness reference"},
+    {"reference_roundness", "roundness reference"},
+    {"evaluate_diameter_reference", "diameter reference"},
+    {"reference_diameter", "diameter reference"},
+    {"en_score", "E_n"},
+    {"en_score_expanded", "E_n"},
+    {"zeta_score", "zeta score"},
+    {"write_measurement_csv_file", "measurement file"},
+    {"estimate_kinematic_errors", "hole-plate fit"},
+    {"express_in_gauge", "hole-plate fit"},
+    {"kinematics_json_section", "kinematics section"},
+    {"error_function_value", "kinematic errors"},
+    {"correlation_matrix", "kinematics correlation"},
+    {"characterize_probe_sphere", "probe characterisation (sphere)"},
+    {"probe_section_json", "probe section"},
+    {"repeated_scan_noise", "noise from a repeated scan"},
+    {"scanning_noise", "scanning noise"},
+    {"touch_trigger_noise", "touch-trigger noise"},
+    {"reference_deviation_mm", "reference profile"},
+    {"high_pass_noise_factor", "noise characterisation"},
+    {"sigma_coverage_factor", "noise characterisation"},
+    {"noise_section_json", "noise section"},
+    {"shrinkage_max_order", "shrinkage treatment"},
+    {"numerical_tolerance_from_digits", "adaptive Monte Carlo"},
+    {"standard_normal_quantile", "coverage factor"},
+};
+
+bool is_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '.';
+}
+
+}  // namespace
+
+std::string user_message(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  std::size_t i = 0;
+  while (i < text.size()) {
+    bool replaced = false;
+    if (i == 0 || !is_name_char(text[i - 1])) {
+      for (const auto& [name, operation] : kOperations) {
+        if (text.compare(i, name.size(), name) == 0 &&
+            text.compare(i + name.size(), 2, ": ") == 0) {
+          out.append(operation).append(": ");
+          i += name.size() + 2;
+          replaced = true;
+          break;
+        }
+      }
+    }
+    if (!replaced) out += text[i++];
+  }
+  return out;
+}
+
+int exit_code_of(const std::exception& e) {
+  if (dynamic_cast<const geometry::UndefinedResult*>(&e)) return kUndefined;
+  if (dynamic_cast<const std::invalid_argument*>(&e)) return kInvalidInput;  // bad input values
+  if (dynamic_cast<const errormodel::OutputError*>(&e)) return kInvalidInput;  // an output path
+  if (dynamic_cast<const std::filesystem::filesystem_error*>(&e)) return kInvalidInput;
+  if (dynamic_cast<const std::ios_base::failure*>(&e)) return kInvalidInput;
+  return kFailure;
+}
+
+std::string error_text(const std::exception& e) {
+  return exit_code_of(e) == kFailure
+             ? std::string("internal error (a bug: please report it with the input): ") + e.what()
+             : user_message(e.what());
+}
+
 int report_current_exception(const char* command) {
   const std::string prefix = std::string("vcmm ") + command + ": error: ";
   try {
     throw;
   } catch (const uncertainty::ExperimentError& e) {
+    // A Monte Carlo trial failed: the code is that of the exception inside it (whose words
+    // the message already holds).
+    int code = kFailure;
     try {
       std::rethrow_if_nested(e);
-    } catch (const std::invalid_argument& inner) {
-      std::cerr << prefix << e.what() << ": " << inner.what() << "\n";
-      return kInvalidInput;
     } catch (const std::exception& inner) {
-      std::cerr << prefix << e.what() << ": " << inner.what() << "\n";
-      return kFailure;
+      code = exit_code_of(inner);
+    } catch (...) {
     }
-    std::cerr << prefix << e.what() << "\n";
-    return kFailure;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << prefix << e.what() << "\n";
-    return kInvalidInput;
-  } catch (const errormodel::OutputError& e) {  // a path the user gave cannot be written
-    std::cerr << prefix << e.what() << "\n";
-    return kInvalidInput;
+    std::cerr << prefix << user_message(e.what())
+              << (code == kFailure ? " (internal error, a bug: please report it)" : "") << "\n";
+    return code;
   } catch (const std::exception& e) {
-    std::cerr << prefix << e.what() << "\n";
+    const int code = exit_code_of(e);
+    std::cerr << prefix << user_message(e.what())
+              << (code == kFailure ? " (internal error, a bug: please report it)" : "") << "\n";
+    return code;
+  } catch (...) {
+    std::cerr << prefix << "unknown exception (internal error, a bug: please report it)\n";
     return kFailure;
   }
 }

@@ -46,9 +46,25 @@ class ProgressBar {
 namespace vcmm::cli {
 
 /// Call inside a catch block: prints "vcmm COMMAND: error: ..." for the exception in flight
-/// and returns the exit code: 3 for invalid input (std::invalid_argument: InvalidInput,
-/// InvalidParameter, CampaignError — also when nested in a Monte Carlo trial's
-/// uncertainty::ExperimentError, which names the trial), 1 for anything else.
+/// and returns its exit code — the one mapping of exception types to the exit codes of
+/// docs/cli.md: 4 for geometry::UndefinedResult (the quantity does not exist for valid input);
+/// 3 for invalid input (std::invalid_argument: InvalidInput, InvalidParameter, CampaignError)
+/// and for I/O failures (errormodel::OutputError, std::filesystem::filesystem_error,
+/// std::ios_base::failure: the message names the path and the OS reason); 1 for anything else
+/// (a bug, said so). An uncertainty::ExperimentError (a failed Monte Carlo trial) gets the code
+/// of the exception nested in it.
 int report_current_exception(const char* command);
+
+/// A library message as the user reads it. The library names the function that refused
+/// ("maximum_inscribed_circle: …", STYLE.md: for a programmer calling it); a user of `vcmm`
+/// never called that function, so each such name becomes the operation it performs
+/// ("MI circle: …", "Monte Carlo: …"). Every message the commands print goes through here.
+std::string user_message(const std::string& text);
+
+/// The exit code of one exception, by the rule above (for loops that report per file).
+int exit_code_of(const std::exception& e);
+
+/// e.what(), marked as an internal error when exit_code_of(e) is 1.
+std::string error_text(const std::exception& e);
 
 }  // namespace vcmm::cli

@@ -17,6 +17,7 @@
 #include "atomic_file.h"
 #include "commands.h"
 #include "option_values.h"
+#include "run_control.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/measurement.h"
 #include "vcmm/errormodel/random_source.h"
@@ -72,12 +73,6 @@ int run_simulate(const SimulateOptions& o) {
   em::Stages stages = em::Stages::all();
   em::Formula formula = em::Formula::first_order;
   try {
-    const std::pair<const char*, double> finite_options[] = {
-        {"--orientation", o.orientation_deg}, {"--height", o.height_mm},
-        {"--temperature", o.temperature_c}};
-    for (const auto& [name, value] : finite_options)
-      if (!std::isfinite(value))
-        throw std::invalid_argument(std::string(name) + " must be a finite number");
     sampling.mode = *em::probing_mode_from_string(o.mode);  // IsMember-checked
     sampling.points = o.points > 0 ? static_cast<Eigen::Index>(o.points)
                       : sampling.mode == em::ProbingMode::scanning ? 3600
@@ -120,12 +115,8 @@ int run_simulate(const SimulateOptions& o) {
         "true workpiece temperature of this draw " + std::to_string(draw.temperature_c) + " C"};
     write_file_atomically(o.output, em::measurement_csv(result, comments));
     return kOk;
-  } catch (const std::invalid_argument& ex) {  // em::InvalidParameter, InvalidInput, ranges
-    std::cerr << "vcmm simulate: error: " << ex.what() << "\n";
-    return kInvalidInput;
-  } catch (const std::exception& ex) {
-    std::cerr << "vcmm simulate: error: " << ex.what() << "\n";
-    return kFailure;
+  } catch (const std::exception&) {  // 3 for the model, the ring or the output path
+    return report_current_exception("simulate");
   }
 }
 
@@ -140,7 +131,7 @@ void add_simulate_command(CLI::App& app, int* exit_code) {
       ->required();
   cmd->add_option("--ring", opts->ring_mm, "inner diameter of the ring gauge (mm), e.g. 171")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(physical_value(em::physical_range::diameter_mm, /*open_below=*/true));
   cmd->add_option("--points", opts->points,
                   "number of equiangular points (default: 3600 scanning, 16 touch)")
       ->check(CLI::Range(3LL, 100000000LL));
@@ -152,12 +143,15 @@ void add_simulate_command(CLI::App& app, int* exit_code) {
       ->required();
   cmd->add_option("--orientation", opts->orientation_deg,
                   "rotation of the ring about its axis (machine Z), degrees")
+      ->check(finite_number())
       ->default_val(0.0);
   cmd->add_option("--height", opts->height_mm,
                   "height of the scanned section in workpiece coordinates (mm)")
+      ->check(physical_value(em::physical_range::coordinate_mm))
       ->default_val(0.0);
   cmd->add_option("--temperature", opts->temperature_c,
                   "workpiece temperature reading (°C)")
+      ->check(physical_value(em::physical_range::temperature_c))
       ->default_val(em::reference_temperature_c);
   cmd->add_option("--stylus-offset", opts->stylus_offset,
                   "tip centre relative to the ram reference point X,Y,Z (mm)")

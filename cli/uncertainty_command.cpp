@@ -31,9 +31,6 @@ namespace {
 namespace em = vcmm::errormodel;
 namespace va = vcmm::validation;
 
-/// Exit status of a run stopped by Ctrl-C (128 + SIGINT, the shell convention).
-constexpr int kInterrupted = 130;
-
 struct UncertaintyOptions {
   std::string model, points;
   std::uint64_t trials = 0;  // 0: the default (unless adaptive)
@@ -87,9 +84,9 @@ int run_uncertainty(const UncertaintyOptions& o) {
     options.evaluation.filter_cutoff_upr = parse_filter_upr(o.filter);
     if (o.trials > 0 && o.adaptive_tolerance_um > 0.0)
       throw std::invalid_argument("--trials and --adaptive exclude each other");
-    if (!(o.coverage > 0.0 && o.coverage < 1.0))
-      throw std::invalid_argument("--coverage must lie in (0, 1)");
     options.monte_carlo.trials = o.trials > 0 ? o.trials : kDefaultTrials;
+    check_trials_for_coverage(o.adaptive_tolerance_um > 0.0 ? 0 : options.monte_carlo.trials,
+                              o.coverage);
     options.monte_carlo.seed = o.seed;
     options.monte_carlo.threads = o.threads;
     options.monte_carlo.coverage_probability = o.coverage;
@@ -165,7 +162,7 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
   const char* meta = "Metadata of plain points and profiles";
   cmd->add_option("--mode", opts->mode, "probing mode: scanning or touch")->group(meta);
   cmd->add_option("--temperature", opts->temperature_c, "workpiece temperature reading (°C)")
-      ->check(finite_number())
+      ->check(physical_value(em::physical_range::temperature_c))
       ->group(meta);
   cmd->add_option("--location", opts->location,
                   "ring centre in machine coordinates X,Y,Z (mm); default for machine-frame "
@@ -188,7 +185,7 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
       ->group(meta);
   cmd->add_option("--radius", opts->radius_mm,
                   "profiles: nominal radius the deviations are about (mm)")
-      ->check(finite_number())
+      ->check(finite_in_range(0.0, em::physical_range::diameter_mm.max / 2.0))
       ->group(meta);
   cmd->add_option("--height", opts->height_mm, "profiles: workpiece height of the profile (mm)")
       ->check(finite_number())
@@ -199,12 +196,13 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
   auto* adaptive = cmd->add_option(
       "--adaptive", opts->adaptive_tolerance_um,
       "adaptive JCGM 101 7.9 run to this numerical tolerance (um) for u and interval ends")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in_range(0.0, 1e6, true));
   trials->excludes(adaptive);
   cmd->add_option("--seed", opts->seed, "seed: fixes every number, whatever the thread count")
       ->check(unsigned_64())
       ->default_val(1);
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
+      ->check(thread_count())
       ->default_val(0);
   cmd->add_option("--reference", opts->reference, "reference circle of RONt: MZ, MI, LS or MC")
       ->check(CLI::IsMember({"MZ", "MI", "LS", "MC"}, CLI::ignore_case))
@@ -213,6 +211,7 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
                   "ISO 16610-21 Gaussian cut-off (UPR) before the roundness, or 'none'")
       ->default_val("50");
   cmd->add_option("--coverage", opts->coverage, "coverage probability of the intervals")
+      ->check(finite_in_range(0.0, 1.0, true))
       ->default_val(0.95);
   cmd->add_option("--bias-treatment", opts->bias_treatment,
                   "roundness bias treatment reported as 'corrected': shrinkage (default: bias at "

@@ -39,8 +39,6 @@ std::string internal_shortest(double v) {
   return buf;
 }
 
-constexpr int kInterrupted = 130;
-
 struct CampaignCliOptions {
   std::string campaign, output, model;
   unsigned threads = 0;
@@ -191,6 +189,7 @@ void add_common(CLI::App* cmd, CampaignCliOptions& o) {
   cmd->add_option("-o,--output", o.output, "output directory (created; reruns resume)")
       ->required();
   cmd->add_option("--threads", o.threads, "Monte Carlo threads (default: all cores)")
+      ->check(thread_count())
       ->default_val(0);
   cmd->add_flag("--denoised", o.denoised,
                 "also run treatment (b) (one more Monte Carlo, on the denoised profile)");
@@ -232,8 +231,7 @@ void add_demo_command(CLI::App& app, int* exit_code) {
       ->default_val("MI");
   cmd->add_option("--form-scale", o->form_scale,
                   "multiply the world's true form (tests the method where form dominates)")
-      ->check(finite_number())
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(finite_in_range(0.0, 1e6))
       ->default_val(1.0);
   cmd->add_option("--kinematics", o->kinematics,
                   "corrected: remove the model's kinematic errors; uncorrected: leave them and "

@@ -7,6 +7,7 @@
 
 #include "vcmm/errormodel/errors.h"
 #include "vcmm/geometry/point_io.h"
+#include "vcmm/geometry/text_lines.h"
 
 namespace vcmm::characterization {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 bool looks_like_measurement_csv(const std::string& text) {
   std::istringstream in(text);
   std::string line;
-  while (std::getline(in, line)) {
+  while (geometry::read_text_line(in, line)) {
     std::string_view v(line);
     if (v.starts_with("\xEF\xBB\xBF")) v.remove_prefix(3);  // UTF-8 BOM
     while (!v.empty() && (v.front() == ' ' || v.front() == '\t')) v.remove_prefix(1);

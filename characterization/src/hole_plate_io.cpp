@@ -17,9 +17,11 @@
 #include <string_view>
 #include <vector>
 
+#include "output_checks.h"
 #include "vcmm/characterization/hole_plate.h"
 #include "vcmm/errormodel/errors.h"
-#include "output_checks.h"
+#include "vcmm/errormodel/physical_ranges.h"
+#include "vcmm/geometry/text_lines.h"
 
 namespace vcmm::characterization {
 namespace {
@@ -33,9 +35,6 @@ constexpr std::string_view kPlateFormat = "vcmm.hole_plate 1";
 constexpr std::string_view kPlacementFormat = "vcmm.hole_plate_placement 1";
 constexpr std::string_view kPlateHeader = "id,x_mm,y_mm,z_mm,u_um";
 constexpr std::string_view kPlacementHeader = "id,x_mm,y_mm,z_mm";
-// The largest plate calibration uncertainty read (µm): a hole or ball plate is calibrated to
-// ~0.1–5 µm; 1 mm is no calibration (and a value like 1e300 would make every weight 0).
-constexpr double kMaxCalibrationUncertaintyUm = 1000.0;
 
 std::string shortest(double v) {
   std::array<char, 32> buf{};
@@ -115,7 +114,7 @@ std::vector<std::pair<std::size_t, std::string>> read_lines(std::istream& in) {
   std::vector<std::pair<std::size_t, std::string>> lines;
   std::string raw;
   std::size_t n = 0;
-  while (std::getline(in, raw)) {
+  while (geometry::read_text_line(in, raw)) {
     ++n;
     std::string_view t(raw);
     if (n == 1 && t.starts_with("\xEF\xBB\xBF")) t.remove_prefix(3);
@@ -331,11 +330,12 @@ HolePlate read_hole_plate_csv(std::istream& in, const std::string& source) {
     for (int k = 0; k < 4; ++k)
       v[k] = parse_number(fields[static_cast<std::size_t>(k + 1)], source, line,
                           "field " + std::to_string(k + 2) + " (" + names[k + 1] + ")");
-    if (v[3] < 0.0) fail(source, line, "field 5 (u_um) must be >= 0; got " + shortest(v[3]));
-    if (v[3] > kMaxCalibrationUncertaintyUm)
-      fail(source, line, "field 5 (u_um) " + shortest(v[3]) + " um is not a plate calibration's "
-                             "uncertainty (at most " + shortest(kMaxCalibrationUncertaintyUm) +
-                             " um; mm given as um?)");
+    // A calibration uncertainty in its physical range (errormodel/physical_ranges.h): a plate
+    // is calibrated to ~0.1–5 µm; 1 mm is no calibration (1e300 would make every weight 0).
+    if (const std::string problem =
+            em::range_problem(em::physical_range::length_sigma_um, v[3]);
+        !problem.empty())
+      fail(source, line, "field 5 (u_um) " + problem);
     plate.ids.emplace_back(fields[0]);
     plate.lines.push_back(line);
     xs.emplace_back(v[0], v[1], v[2]);
@@ -409,11 +409,8 @@ HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::st
                                                 "stylus_offset_mm component " + std::to_string(k + 1));
         stylus = true;
       } else {  // setup or name
-        // A carriage return inside the value (a stray CR, not a CRLF ending, which is trimmed)
-        // would give a name no placement file can hold — the writer refuses it: refused here
-        // (found by the fuzz target hole_plate_placement_csv, docs/fuzzing.md).
-        if (value.find('\r') != std::string_view::npos)
-          fail(source, line, "metadata '" + key + "' contains a carriage return");
+        // No carriage return can be inside the value: a lone CR ends the line
+        // (geometry/text_lines.h; fuzz target hole_plate_placement_csv, docs/fuzzing.md).
         if (key == "setup") {
           pl.setup = std::string(value);
         } else {

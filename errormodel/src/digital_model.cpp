@@ -17,6 +17,7 @@
 
 #include "internal/kinematics_json.h"
 #include "vcmm/errormodel/errors.h"
+#include "vcmm/errormodel/physical_ranges.h"
 
 namespace vcmm::errormodel {
 namespace {
@@ -83,24 +84,26 @@ class Reader {
     return d;
   }
 
-  double non_negative(const json& v, const std::string& path, const char* what) const {
+  /// A number in its physical range (physical_ranges.h): the message names the key and unit.
+  double in_range(const json& v, const std::string& path, const PhysicalRange& range) const {
     const double d = number(v, path);
-    if (d < 0.0) fail(path, std::string("must be >= 0 (") + what + ")", v);
+    if (const std::string problem = range_problem(range, d); !problem.empty()) fail(path, problem);
     return d;
   }
 
-  /// {"value_<unit>": v, "uncertainty_<unit>": u} with u ≥ 0, both multiplied by `scale`.
+  /// {"value_<unit>": v, "uncertainty_<unit>": u}, each in its range, both multiplied by
+  /// `scale`.
   UncertainValue uncertain(const json& parent, const std::string& key, const std::string& path,
-                           const std::string& unit, double scale) const {
+                           const std::string& unit, double scale, const PhysicalRange& value_range,
+                           const PhysicalRange& u_range) const {
     const std::string kv = "value_" + unit, ku = "uncertainty_" + unit;
     const json& v = member(parent, key, path);
     if (!v.is_object())
       fail(path, "must be an object {\"" + kv + "\": ..., \"" + ku + "\": ...}", v);
     only_keys(v, {kv.c_str(), ku.c_str()}, path);
     UncertainValue out;
-    out.value = number(member(v, kv, join(path, kv)), join(path, kv)) * scale;
-    out.u = non_negative(member(v, ku, join(path, ku)), join(path, ku), "a standard uncertainty") *
-            scale;
+    out.value = in_range(member(v, kv, join(path, kv)), join(path, kv), value_range) * scale;
+    out.u = in_range(member(v, ku, join(path, ku)), join(path, ku), u_range) * scale;
     return out;
   }
 
@@ -117,8 +120,8 @@ class Reader {
 RoughnessModel read_roughness(const Reader& r, const json& root) {
   const json& s = r.object(root, "roughness", "roughness");
   r.only_keys(s, {"sigma_um"}, "roughness");
-  return {r.non_negative(r.member(s, "sigma_um", "roughness.sigma_um"), "roughness.sigma_um",
-                         "a standard deviation") *
+  return {r.in_range(r.member(s, "sigma_um", "roughness.sigma_um"), "roughness.sigma_um",
+                     physical_range::length_sigma_um) *
           kMmPerUm};
 }
 
@@ -126,11 +129,13 @@ TemperatureModel read_temperature(const Reader& r, const json& root) {
   const json& s = r.object(root, "temperature", "temperature");
   r.only_keys(s, {"expansion_coefficient", "thermometer_uncertainty_K"}, "temperature");
   TemperatureModel t;
-  t.expansion_coefficient_per_k = r.uncertain(s, "expansion_coefficient",
-                                              "temperature.expansion_coefficient", "per_K", 1.0);
+  t.expansion_coefficient_per_k =
+      r.uncertain(s, "expansion_coefficient", "temperature.expansion_coefficient", "per_K", 1.0,
+                  physical_range::expansion_coefficient_per_k,
+                  physical_range::expansion_coefficient_u_per_k);
   const std::string tpath = "temperature.thermometer_uncertainty_K";
-  t.thermometer_u_k = r.non_negative(r.member(s, "thermometer_uncertainty_K", tpath), tpath,
-                                     "a standard uncertainty");
+  t.thermometer_u_k = r.in_range(r.member(s, "thermometer_uncertainty_K", tpath), tpath,
+                                 physical_range::thermometer_u_k);
   return t;
 }
 
@@ -139,7 +144,8 @@ ProbeModel read_probe(const Reader& r, const json& root) {
   r.only_keys(s, {"tip_radius_error", "directional_error"}, "probe");
   ProbeModel p;
   p.tip_radius_error_mm =
-      r.uncertain(s, "tip_radius_error", "probe.tip_radius_error", "um", kMmPerUm);
+      r.uncertain(s, "tip_radius_error", "probe.tip_radius_error", "um", kMmPerUm,
+                  physical_range::length_error_um, physical_range::length_sigma_um);
   const std::string dpath = "probe.directional_error";
   const json& list = r.member(s, "directional_error", dpath);
   if (!list.is_array()) r.fail(dpath, "must be an array of harmonics (may be empty)", list);
@@ -159,8 +165,10 @@ ProbeModel read_probe(const Reader& r, const json& root) {
     ph.order = static_cast<int>(order.get<long long>());
     if (!orders.insert(ph.order).second)
       r.fail(hpath + ".order", "repeats an order already given", order);
-    ph.cos_mm = r.uncertain(h, "cos", hpath + ".cos", "um", kMmPerUm);
-    ph.sin_mm = r.uncertain(h, "sin", hpath + ".sin", "um", kMmPerUm);
+    ph.cos_mm = r.uncertain(h, "cos", hpath + ".cos", "um", kMmPerUm,
+                            physical_range::length_error_um, physical_range::length_sigma_um);
+    ph.sin_mm = r.uncertain(h, "sin", hpath + ".sin", "um", kMmPerUm,
+                            physical_range::length_error_um, physical_range::length_sigma_um);
     p.directional.push_back(ph);
   }
   return p;
@@ -170,13 +178,12 @@ NoiseModel read_noise(const Reader& r, const json& root) {
   const json& s = r.object(root, "noise", "noise");
   r.only_keys(s, {"scanning_sigma_um", "touch_trigger_sigma_um"}, "noise");
   NoiseModel n;
-  n.scanning_sigma_mm =
-      r.non_negative(r.member(s, "scanning_sigma_um", "noise.scanning_sigma_um"),
-                     "noise.scanning_sigma_um", "a standard deviation") *
-      kMmPerUm;
+  n.scanning_sigma_mm = r.in_range(r.member(s, "scanning_sigma_um", "noise.scanning_sigma_um"),
+                                   "noise.scanning_sigma_um", physical_range::length_sigma_um) *
+                        kMmPerUm;
   n.touch_trigger_sigma_mm =
-      r.non_negative(r.member(s, "touch_trigger_sigma_um", "noise.touch_trigger_sigma_um"),
-                     "noise.touch_trigger_sigma_um", "a standard deviation") *
+      r.in_range(r.member(s, "touch_trigger_sigma_um", "noise.touch_trigger_sigma_um"),
+                 "noise.touch_trigger_sigma_um", physical_range::length_sigma_um) *
       kMmPerUm;
   return n;
 }
@@ -201,23 +208,25 @@ KinematicModel read_kinematics(const Reader& r, const json& root) {
 
 void validate_digital_model(const DigitalModel& m) {
   const Reader r("validate_digital_model");
-  auto finite = [&](double v, const char* path) {
-    if (!std::isfinite(v)) r.fail(path, "must be finite", json(v));
+  // The same ranges as the file (physical_ranges.h), on the file's units (µm for lengths).
+  auto check = [&](double v, const std::string& path, const PhysicalRange& range, double scale) {
+    if (const std::string problem = range_problem(range, v * scale); !problem.empty())
+      r.fail(path, problem);
   };
-  auto non_negative = [&](double v, const char* path, const char* what) {
-    finite(v, path);
-    if (v < 0.0) r.fail(path, std::string("must be >= 0 (") + what + ")", json(v));
-  };
-  non_negative(m.roughness.sigma_mm, "roughness.sigma_um", "a standard deviation");
-  finite(m.temperature.expansion_coefficient_per_k.value,
-         "temperature.expansion_coefficient.value_per_K");
-  non_negative(m.temperature.expansion_coefficient_per_k.u,
-               "temperature.expansion_coefficient.uncertainty_per_K", "a standard uncertainty");
-  non_negative(m.temperature.thermometer_u_k, "temperature.thermometer_uncertainty_K",
-               "a standard uncertainty");
-  finite(m.probe.tip_radius_error_mm.value, "probe.tip_radius_error.value_um");
-  non_negative(m.probe.tip_radius_error_mm.u, "probe.tip_radius_error.uncertainty_um",
-               "a standard uncertainty");
+  namespace pr = physical_range;
+  constexpr double um = 1.0 / kMmPerUm;
+  check(m.roughness.sigma_mm, "roughness.sigma_um", pr::length_sigma_um, um);
+  check(m.temperature.expansion_coefficient_per_k.value,
+        "temperature.expansion_coefficient.value_per_K", pr::expansion_coefficient_per_k, 1.0);
+  check(m.temperature.expansion_coefficient_per_k.u,
+        "temperature.expansion_coefficient.uncertainty_per_K",
+        pr::expansion_coefficient_u_per_k, 1.0);
+  check(m.temperature.thermometer_u_k, "temperature.thermometer_uncertainty_K",
+        pr::thermometer_u_k, 1.0);
+  check(m.probe.tip_radius_error_mm.value, "probe.tip_radius_error.value_um",
+        pr::length_error_um, um);
+  check(m.probe.tip_radius_error_mm.u, "probe.tip_radius_error.uncertainty_um",
+        pr::length_sigma_um, um);
   std::set<int> orders;
   for (std::size_t i = 0; i < m.probe.directional.size(); ++i) {
     const ProbeHarmonic& h = m.probe.directional[i];
@@ -228,14 +237,13 @@ void validate_digital_model(const DigitalModel& m) {
              json(h.order));
     if (!orders.insert(h.order).second)
       r.fail(p + ".order", "repeats an order already given", json(h.order));
-    finite(h.cos_mm.value, (p + ".cos.value_um").c_str());
-    finite(h.sin_mm.value, (p + ".sin.value_um").c_str());
-    non_negative(h.cos_mm.u, (p + ".cos.uncertainty_um").c_str(), "a standard uncertainty");
-    non_negative(h.sin_mm.u, (p + ".sin.uncertainty_um").c_str(), "a standard uncertainty");
+    check(h.cos_mm.value, p + ".cos.value_um", pr::length_error_um, um);
+    check(h.sin_mm.value, p + ".sin.value_um", pr::length_error_um, um);
+    check(h.cos_mm.u, p + ".cos.uncertainty_um", pr::length_sigma_um, um);
+    check(h.sin_mm.u, p + ".sin.uncertainty_um", pr::length_sigma_um, um);
   }
-  non_negative(m.noise.scanning_sigma_mm, "noise.scanning_sigma_um", "a standard deviation");
-  non_negative(m.noise.touch_trigger_sigma_mm, "noise.touch_trigger_sigma_um",
-               "a standard deviation");
+  check(m.noise.scanning_sigma_mm, "noise.scanning_sigma_um", pr::length_sigma_um, um);
+  check(m.noise.touch_trigger_sigma_mm, "noise.touch_trigger_sigma_um", pr::length_sigma_um, um);
 }
 
 DigitalModel parse_digital_model(std::string_view text, const std::string& source) {

@@ -3,6 +3,8 @@
 // file is pointed to the exact value; the KinematicModel constructor re-checks the same rules.
 #include "internal/kinematics_json.h"
 
+#include "vcmm/errormodel/physical_ranges.h"
+
 #include <Eigen/Cholesky>
 
 #include <array>
@@ -149,9 +151,16 @@ ErrorFunctionEstimate parse_function(const nlohmann::json& v, const std::string&
   const auto c = numbers(required(v, kc, path), child(path, kc), 1,
                          static_cast<std::size_t>(max_legendre_degree + 1));
   const auto u = numbers(required(v, ku, path), child(path, ku), c.size(), c.size());
-  for (std::size_t i = 0; i < u.size(); ++i) {
-    if (u[i] < 0.0) fail(element(child(path, ku), i), "must be >= 0; got " + shown(v[ku][i]));
-  }
+  // Each coefficient and uncertainty in its physical range (physical_ranges.h).
+  const PhysicalRange& value_range =
+      rot ? physical_range::kinematic_rotation_urad : physical_range::kinematic_error_um;
+  const PhysicalRange& u_range = rot ? physical_range::rotation_u_urad : physical_range::length_sigma_um;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (const std::string problem = range_problem(value_range, c[i]); !problem.empty())
+      fail(element(child(path, kc), i), problem);
+  for (std::size_t i = 0; i < u.size(); ++i)
+    if (const std::string problem = range_problem(u_range, u[i]); !problem.empty())
+      fail(element(child(path, ku), i), problem);
   for (double x : c) fn.coefficients.push_back(x * to_internal);
   for (double x : u) fn.standard_uncertainties.push_back(x * to_internal);
   if (const auto it = v.find("correlation"); it != v.end()) {
@@ -271,7 +280,12 @@ KinematicModel kinematic_model_from_json(const nlohmann::json& section,
       check_keys(v, ps, {"value_urad", "uncertainty_urad"});
       const double value = number(required(v, "value_urad", ps), child(ps, "value_urad"));
       const double u = number(required(v, "uncertainty_urad", ps), child(ps, "uncertainty_urad"));
-      if (u < 0.0) fail(child(ps, "uncertainty_urad"), "must be >= 0; got " + shown(v["uncertainty_urad"]));
+      if (const std::string problem = range_problem(physical_range::kinematic_rotation_urad, value);
+          !problem.empty())
+        fail(child(ps, "value_urad"), problem);
+      if (const std::string problem = range_problem(physical_range::rotation_u_urad, u);
+          !problem.empty())
+        fail(child(ps, "uncertainty_urad"), problem);
       squareness[static_cast<std::size_t>(s)] = {value * kUrad, u * kUrad};
     }
   }

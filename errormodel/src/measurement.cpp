@@ -21,6 +21,9 @@
 #include <vector>
 
 #include "vcmm/errormodel/errors.h"
+#include "vcmm/errormodel/physical_ranges.h"
+#include "vcmm/geometry/number_field.h"
+#include "vcmm/geometry/text_lines.h"
 
 namespace vcmm::errormodel {
 namespace {
@@ -89,15 +92,18 @@ std::vector<std::string_view> split_commas(std::string_view s) {
 double parse_field(std::string_view field, const std::string& source, std::size_t line,
                    const std::string& what) {
   double v = 0.0;
-  const char* first = field.data();
-  const char* last = field.data() + field.size();
-  if (!field.empty() && *first == '+') ++first;  // from_chars refuses a leading '+'
-  const auto r = std::from_chars(first, last, v);
-  if (field.empty() || r.ec == std::errc::invalid_argument || r.ptr != last)
-    fail(source, line, what + " is not a number ('" + std::string(field) + "')");
-  if (r.ec == std::errc::result_out_of_range || !std::isfinite(v))
-    fail(source, line, what + " is not finite ('" + std::string(field) + "')");
+  const geometry::NumberFieldStatus status = geometry::parse_number_field(field, v);
+  if (status != geometry::NumberFieldStatus::ok)
+    fail(source, line, what + " " + geometry::number_field_problem(status, field));
   return v;
+}
+
+/// A metadata value in its physical range (physical_ranges.h): names the file, line, key and
+/// unit.
+void check_range(double v, const PhysicalRange& range, const std::string& source,
+                 std::size_t line, const std::string& what) {
+  if (const std::string problem = range_problem(range, v); !problem.empty())
+    fail(source, line, what + " " + problem);
 }
 
 std::vector<double> parse_list(std::string_view value, std::size_t count,
@@ -241,7 +247,7 @@ Measurement read_measurement_csv(std::istream& in, const std::string& source) {
   bool header_seen = false;
   std::string raw;
   std::size_t line = 0;
-  while (std::getline(in, raw)) {
+  while (geometry::read_text_line(in, raw)) {
     ++line;
     std::string_view text(raw);
     if (line == 1 && text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
@@ -273,11 +279,15 @@ Measurement read_measurement_csv(std::istream& in, const std::string& source) {
         m.mode = *mode;
       } else if (key == "temperature_C") {
         m.temperature_c = parse_list(value, 1, source, line, key)[0];
+        check_range(m.temperature_c, physical_range::temperature_c, source, line, key);
       } else if (key == "orientation_deg") {
         m.placement.orientation_rad =
             parse_list(value, 1, source, line, key)[0] * std::numbers::pi / 180.0;
       } else {
         const auto v = parse_list(value, 3, source, line, key);
+        for (std::size_t k = 0; k < 3; ++k)
+          check_range(v[k], physical_range::coordinate_mm, source, line,
+                      key + " component " + std::to_string(k + 1));
         (key == "location_mm" ? m.placement.location_mm : m.stylus_offset_mm) =
             Eigen::Vector3d(v[0], v[1], v[2]);
       }

@@ -149,21 +149,11 @@ class Fitter {
     const double cxz = m_xz - m_x * gz, cyz = m_yz - m_y * gz;
     const double det = cxx * cyy - cxy * cxy;
     if (!(det > 0.0) || !std::isfinite(det)) {
-      // validate_profile has excluded exactly collinear data; this is its floating-point twin,
-      // or a profile whose size puts its cubic moments outside the double range (~1e±100).
-      double extent = 0.0;
-      for (Eigen::Index i = 0; i < n_; ++i)
-        extent = std::max({extent, std::fabs(x_[i]), std::fabs(y_[i])});
+      // validate_profile has excluded exactly collinear data; this is its floating-point twin
+      // (check_span has excluded spans whose moments leave the double range).
       std::ostringstream os;
-      os << kCaller << ": no circle can be fitted in double precision: ";
-      if (!std::isfinite(det) && extent > 1.0)
-        os << "the profile's extent (" << extent
-           << ") is too large, its algebraic-fit moments overflow";
-      else if (extent < 1.0 && det == 0.0)
-        os << "the profile's extent (" << extent
-           << ") is too small, its algebraic-fit moments underflow";
-      else
-        os << "the points are numerically collinear (algebraic-fit determinant " << det << ")";
+      os << kCaller << ": no circle can be fitted in double precision: the points are "
+         << "numerically collinear (algebraic-fit determinant " << det << ")";
       throw InvalidInput(os.str());
     }
     // Centred normal equations [cxx cxy; cxy cyy] (2a, 2b) = (cxz, cyz). As z is not
@@ -318,7 +308,39 @@ LeastSquaresCircle least_squares_circle(std::span<const Point2> points) {
   return internal::fit_least_squares_circle(points);
 }
 
+namespace {
+
+/// Spans of the data (mm) the fit handles: the Kåsa start forms products up to the 5th power
+/// of the local coordinates (cyy·cxz), sums over up to ~1e8 points add 8 decades, and the
+/// results must stay inside the normal double range (1e±308): 1e-50 ≤ s ≤ 1e50 leaves a margin
+/// of ~50 decades. Beyond, the moments overflow or underflow and Gauss-Newton would call the
+/// data straight; a span outside is a wrong unit or corrupt data, not a roundness profile.
+constexpr double kMinSpanMm = 1e-50;
+constexpr double kMaxSpanMm = 1e50;
+
+void check_span(std::span<const Point2> points) {
+  double x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
+  for (const Point2& p : points) {
+    x0 = std::min(x0, p.x);
+    x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y);
+    y1 = std::max(y1, p.y);
+  }
+  const double span = std::max(x1 - x0, y1 - y0);  // may be inf for ±1e308 data: refused
+  if (span >= kMinSpanMm && span <= kMaxSpanMm) return;
+  std::ostringstream os;
+  os.precision(3);
+  os << kCaller << ": the points span " << span << " mm; a circle is fitted in double precision "
+     << "only to data spanning " << kMinSpanMm << " to " << kMaxSpanMm
+     << " mm (its moments reach the 5th power of the span and would overflow or underflow): "
+     << "wrong unit or corrupt data?";
+  throw InvalidInput(os.str());
+}
+
+}  // namespace
+
 LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> points) {
+  check_span(points);
   thread_local Workspace workspace;
   Fitter fit(points, workspace);
   const double nd = static_cast<double>(fit.size());

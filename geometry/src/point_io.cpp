@@ -100,14 +100,10 @@ PointTable parse_points_csv(std::string_view text, const std::string& source_nam
            "expected 2 or 3 fields (x,y or x,y,z in mm), found " +
                std::to_string(fields.size()));
     }
-    if (!numeric) {
-      const std::string field(fields[bad_field]);
-      if (bad_status == FieldStatus::non_finite)
-        fail(source_name, line_no,
-             "field " + std::to_string(bad_field + 1) + " is not finite ('" + field + "')");
+    if (!numeric)
       fail(source_name, line_no,
-           "field " + std::to_string(bad_field + 1) + " is not a number ('" + field + "')");
-    }
+           "field " + std::to_string(bad_field + 1) + " " +
+               number_field_problem(bad_status, fields[bad_field]));
     if (columns == 0) columns = fields.size();
     if (fields.size() != columns) {
       fail(source_name, line_no,

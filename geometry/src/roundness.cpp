@@ -138,6 +138,14 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
   else if (out.minimum_zone) center = out.minimum_zone->center;
   else if (out.maximum_inscribed) center = out.maximum_inscribed->center;
   else if (out.minimum_circumscribed) center = out.minimum_circumscribed->center;
+  // No requested circle defined (only MI asked of an arc): the coverage still tells the user
+  // why, so take it about the LS centre (issue 12: it read "0.00°, closed profile").
+  if (!center) {
+    try {
+      center = internal::fit_least_squares_circle(profile).center;
+    } catch (const std::exception&) {  // nearly straight data: no centre, no coverage
+    }
+  }
   if (center) out.coverage = angular_coverage(profile, *center);
   if (out.coverage.covered_rad < kHalfTurn) {
     const std::string caution = "not a roundness reference on an arc < 180°";

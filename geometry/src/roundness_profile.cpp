@@ -10,6 +10,7 @@
 // Messages use 17 significant digits for values (they read back to the same double) and 12
 // for angles converted from radians (so 11° computed from radians reads "11", not
 // "10.999999999999998").
+#include "vcmm/geometry/text_lines.h"
 #include "vcmm/geometry/roundness_profile.h"
 
 #include <cmath>
@@ -114,7 +115,7 @@ RoundnessProfile read_roundness_profile_csv(std::istream& in, const std::string&
   const auto fail = [&](std::size_t line, const std::string& what) -> void {
     throw InvalidInput(source_name + ":" + std::to_string(line) + ": " + what);
   };
-  while (std::getline(in, raw)) {
+  while (geometry::read_text_line(in, raw)) {
     ++line_no;
     std::string_view s = raw;
     if (line_no == 1 && s.size() >= 3 && s.substr(0, 3) == "\xEF\xBB\xBF") s.remove_prefix(3);
@@ -148,12 +149,9 @@ RoundnessProfile read_roundness_profile_csv(std::istream& in, const std::string&
     if (fields.size() != 2)
       fail(line_no, "expected 2 fields (angle_deg,deviation_um), found " +
                         std::to_string(fields.size()));
-    if (bad < fields.size()) {
-      const std::string rule =
-          bad_status == FieldStatus::non_finite ? " is not finite" : " is not a number";
-      fail(line_no, "field " + std::to_string(bad + 1) + " (" + kFieldName[bad] + ")" + rule +
-                        "; got '" + std::string(fields[bad]) + "'");
-    }
+    if (bad < fields.size())
+      fail(line_no, "field " + std::to_string(bad + 1) + " (" + kFieldName[bad] + ") " +
+                        number_field_problem(bad_status, fields[bad]));
     if (!(v[0] >= 0.0 && v[0] <= 360.0))
       fail(line_no, "field 1 (angle_deg) must lie in [0, 360); got '" + std::string(fields[0]) +
                         "'");

@@ -565,7 +565,12 @@ TEST(HolePlateFiles, BadFilesNameFileLineAndField) {
   EXPECT_NE(plate_error(h + "A,0,0,0\n").find("plate.csv:2: expected 5 fields"), std::string::npos);
   EXPECT_NE(plate_error(h + "A,0,abc,0,0.3\n").find("plate.csv:2: field 3 (y_mm) is not a number"), std::string::npos);
   EXPECT_NE(plate_error(h + "A,0,0,nan,0.3\n").find("plate.csv:2: field 4 (z_mm) is not finite"), std::string::npos);
-  EXPECT_NE(plate_error(h + "A,0,0,0,-1\n").find("plate.csv:2: field 5 (u_um) must be >= 0"), std::string::npos);
+  EXPECT_NE(plate_error(h + "A,0,0,0,-1\n").find("plate.csv:2: field 5 (u_um) must lie in [0, 1000] µm"), std::string::npos);
+  // Issue 12: a plate u of 1e300 µm was blamed on "collinear features"; it is the value.
+  EXPECT_NE(plate_error(h + "A,0,0,0,1e300\n")
+                .find("plate.csv:2: field 5 (u_um) must lie in [0, 1000] µm (a standard "
+                      "deviation); got 1e+300 µm"),
+            std::string::npos);
   EXPECT_NE(plate_error(h + "A,0,0,0,1\nA,1,0,0,1\n").find("plate.csv:3: feature id 'A' repeated (first on line 2)"), std::string::npos);
   EXPECT_NE(plate_error(h + ",0,0,0,1\n").find("plate.csv:2: field 1 (id) is empty"), std::string::npos);
   EXPECT_NE(plate_error(h + "A,0,0,0,1\nB,1,0,0,1\n").find("at least 3 features; got 2"), std::string::npos);

@@ -201,6 +201,12 @@ TEST(CliCharacterizeHolePlate, BadOptionsExit2AndWriteNothing) {
           quoted(kPlateDir + "xy_low_t1.csv") + " --probing-sigma-um -0.2" + model + o);
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("--probing-sigma-um"), std::string::npos) << r.err;
+  // Issue 12: 1e300 was blamed on "collinear features"; it is the value (a σ ≤ 1 mm).
+  r = run("characterize hole-plate --plate " + quoted(kPlateDir + "plate.csv") + " --placement " +
+          quoted(kPlateDir + "xy_low_t1.csv") + " --probing-sigma-um 1e300" + model + o);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--probing-sigma-um: must lie in (0, 1000] µm"), std::string::npos)
+      << r.err;
   // No axis ranges and no model; an axis that does not exist; an unknown function name.
   r = run(example_inputs() + o);
   EXPECT_EQ(r.exit_code, 2) << r.err;

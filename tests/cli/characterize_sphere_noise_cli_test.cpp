@@ -139,6 +139,11 @@ TEST(CliCharacterizeSphere, ExitCodes) {
   // Usage.
   EXPECT_EQ(run("characterize sphere " + iso + "-o x.json").exit_code, 2);  // no u
   EXPECT_EQ(run("characterize sphere " + iso + "--u-diameter-um -1 -o x.json").exit_code, 2);
+  // Issue 12: 1e300 wrote "uncertainty_um": null with exit 0; it is refused as the value.
+  const CliRun huge = run("characterize sphere " + iso + "--u-diameter-um 1e300 -o x.json");
+  EXPECT_EQ(huge.exit_code, 2) << huge.err;
+  EXPECT_NE(huge.err.find("--u-diameter-um must be a standard uncertainty"), std::string::npos)
+      << huge.err;
   EXPECT_EQ(
       run("characterize sphere " + iso + "--u-diameter-um 0.1 --orders 0 -o x.json").exit_code, 2);
   EXPECT_FALSE(fs::exists(out));

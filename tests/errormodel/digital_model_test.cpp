@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/errors.h"
@@ -73,8 +74,56 @@ TEST(DigitalModelBadFile, NegativeSigmaNamesPathValueAndRule) {
   j["noise"]["scanning_sigma_um"] = -0.2;
   const Failure f = failure_of(j);
   EXPECT_EQ(f.key_path, "noise.scanning_sigma_um");
-  EXPECT_NE(f.message.find("must be >= 0 (a standard deviation); got -0.2"), std::string::npos)
+  EXPECT_NE(f.message.find("must lie in [0, 1000] µm (a standard deviation); got -0.2 µm"),
+            std::string::npos)
       << f.message;
+}
+
+// Issue 12: a noise σ or tip error of 1e300 made `simulate` write points at 1e296 mm, and an
+// α of 1e300 was blamed on an axis range. Each value beyond its physical range is refused
+// under its own key, with the unit (errormodel/physical_ranges.h).
+TEST(DigitalModelBadFile, ValuesBeyondTheirPhysicalRangeNameKeyAndUnit) {
+  struct Case {
+    std::vector<std::string> path;
+    double value;
+    std::string key, rule;
+  };
+  const Case cases[] = {
+      {{"noise", "scanning_sigma_um"}, 1e300, "noise.scanning_sigma_um",
+       "must lie in [0, 1000] µm (a standard deviation); got 1e+300 µm"},
+      {{"noise", "touch_trigger_sigma_um"}, 1001, "noise.touch_trigger_sigma_um",
+       "must lie in [0, 1000] µm"},
+      {{"roughness", "sigma_um"}, 1e300, "roughness.sigma_um", "must lie in [0, 1000] µm"},
+      {{"temperature", "expansion_coefficient", "value_per_K"}, 1e300,
+       "temperature.expansion_coefficient.value_per_K",
+       "must lie in [-0.001, 0.001] /K (a linear expansion coefficient); got 1e+300 /K"},
+      {{"temperature", "expansion_coefficient", "uncertainty_per_K"}, 0.5,
+       "temperature.expansion_coefficient.uncertainty_per_K", "must lie in [0, 0.001] /K"},
+      {{"temperature", "thermometer_uncertainty_K"}, 273.15,
+       "temperature.thermometer_uncertainty_K", "must lie in [0, 10] K"},
+      {{"probe", "tip_radius_error", "value_um"}, -1e300, "probe.tip_radius_error.value_um",
+       "must lie in [-1000, 1000] µm (a probe error); got -1e+300 µm"},
+      {{"probe", "tip_radius_error", "uncertainty_um"}, 1e300,
+       "probe.tip_radius_error.uncertainty_um", "must lie in [0, 1000] µm"},
+  };
+  for (const Case& c : cases) {
+    json j = example_json();
+    json* at = &j;
+    for (const std::string& k : c.path) at = &(*at)[k];
+    *at = c.value;
+    const Failure f = failure_of(j);
+    EXPECT_EQ(f.key_path, c.key);
+    EXPECT_NE(f.message.find("model.json: " + c.key + ": " + c.rule), std::string::npos)
+        << f.message;
+  }
+  json j = example_json();
+  j["probe"]["directional_error"][1]["sin"]["value_um"] = 2000;
+  EXPECT_EQ(failure_of(j).key_path, "probe.directional_error[1].sin.value_um");
+  // Just inside the limits: accepted.
+  j = example_json();
+  j["noise"]["scanning_sigma_um"] = 1000;
+  j["temperature"]["expansion_coefficient"]["value_per_K"] = -1e-3;
+  EXPECT_NO_THROW(parse_digital_model(j.dump(), "model.json"));
 }
 
 TEST(DigitalModelBadFile, NonNumericValue) {
@@ -170,6 +219,15 @@ TEST(DigitalModelValidation, ModelsBuiltInCodeAreCheckedLikeFiles) {
     FAIL() << "no exception";
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.key_path(), "noise.touch_trigger_sigma_um");
+  }
+  m = read_digital_model_file(kExample);
+  m.noise.scanning_sigma_mm = 1.5;  // 1500 µm: the file's limit, in the model's mm
+  try {
+    validate_digital_model(m);
+    FAIL() << "no exception";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.key_path(), "noise.scanning_sigma_um");
+    EXPECT_NE(std::string(e.what()).find("got 1500 µm"), std::string::npos) << e.what();
   }
   m = read_digital_model_file(kExample);
   m.probe.directional.push_back({2, {0.0, 0.0}, {0.0, 0.0}});

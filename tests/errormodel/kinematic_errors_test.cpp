@@ -670,7 +670,18 @@ TEST(Json, ErrorsNameTheKeyPath) {
       {"non-numeric", [](auto& j) { j["errors"]["E_XX"]["legendre_um"][1] = "abc"; },
        "model.kinematics.errors.E_XX.legendre_um[1]: must be a number; got \"abc\""},
       {"negative uncertainty", [](auto& j) { j["errors"]["E_AX"]["uncertainty_urad"][0] = -0.2; },
-       "model.kinematics.errors.E_AX.uncertainty_urad[0]: must be >= 0; got -0.2"},
+       "model.kinematics.errors.E_AX.uncertainty_urad[0]: must lie in [0, 10000] µrad (a standard "
+       "uncertainty); got -0.2 µrad"},
+      // Issue 12: values far outside any CMM are refused under their own key, with the unit.
+      {"huge coefficient", [](auto& j) { j["errors"]["E_XX"]["legendre_um"][1] = 1e300; },
+       "model.kinematics.errors.E_XX.legendre_um[1]: must lie in [-1000, 1000] µm (a kinematic "
+       "error coefficient); got 1e+300 µm"},
+      {"huge uncertainty", [](auto& j) { j["errors"]["E_YX"]["uncertainty_um"][0] = 2000; },
+       "model.kinematics.errors.E_YX.uncertainty_um[0]: must lie in [0, 1000] µm"},
+      {"huge rotation", [](auto& j) { j["errors"]["E_AX"]["legendre_urad"][0] = -2e4; },
+       "model.kinematics.errors.E_AX.legendre_urad[0]: must lie in [-10000, 10000] µrad"},
+      {"huge squareness", [](auto& j) { j["squareness"]["E_C0Y"]["value_urad"] = 1e300; },
+       "model.kinematics.squareness.E_C0Y.value_urad: must lie in [-10000, 10000] µrad"},
       {"wrong length", [](auto& j) { j["errors"]["E_YX"]["uncertainty_um"] = {0.1, 0.1}; },
        "model.kinematics.errors.E_YX.uncertainty_um: must have 3 elements; got 2"},
       {"too many coefficients",

@@ -151,7 +151,8 @@ TEST(MeasurementBadFile, EachRuleGivesFileLineAndValue) {
       {kMeta + h + "1,0,0,-1,0\n", "m.csv:8:", "expected 6 fields"},
       {kMeta + h + "1,abc,0,-1,0,0\n", "m.csv:8:", "field 2 (y_mm) is not a number ('abc')"},
       {kMeta + h + "1,0,nan,-1,0,0\n", "m.csv:8:", "field 3 (z_mm) is not finite ('nan')"},
-      {kMeta + h + "1,0,0,1e999,0,0\n", "m.csv:8:", "not finite"},
+      {kMeta + h + "1,0,0,1e999,0,0\n", "m.csv:8:", "field 4 (nx) overflows the double range"},
+      {kMeta + h + "1,0,1e-400,-1,0,0\n", "m.csv:8:", "field 3 (z_mm) underflows"},
       {kMeta + h + "1,0,0,-2,0,0\n", "m.csv:8:", "unit vector"},
       {kMeta + h, "m.csv:8:", "no points"},
       {kMeta + "x,y,z\n", "m.csv:7:", "expected the header"},
@@ -160,6 +161,15 @@ TEST(MeasurementBadFile, EachRuleGivesFileLineAndValue) {
       {"# mode: sideways\n", "m.csv:1:", "mode must be"},
       {"# location_mm: 1, 2\n", "m.csv:1:", "location_mm needs 3"},
       {"# temperature_C: warm\n", "m.csv:1:", "temperature_C is not a number ('warm')"},
+      // Issue 12: a kelvin value gave a diameter of 170.4647 mm; −300 °C was accepted.
+      {"# temperature_C: 293.15\n", "m.csv:1:",
+       "temperature_C must lie in [-50, 100] °C (a workpiece temperature in °C; kelvin given? "
+       "293.15 K = 20 °C); got 293.15 °C"},
+      {"# temperature_C: -300\n", "m.csv:1:",
+       "temperature_C is below absolute zero (-273.15 °C): not a temperature in °C; got -300 °C"},
+      {"# location_mm: 0, 1e300, 0\n", "m.csv:1:",
+       "location_mm component 2 must lie in [-1e+05, 1e+05] mm (a position in a CMM volume); "
+       "got 1e+300 mm"},
       {"", "m.csv:1:", "missing"},
   };
   for (const Case& c : cases) {

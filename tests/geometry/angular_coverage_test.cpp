@@ -112,6 +112,9 @@ TEST(EvaluateRoundnessPerCircle, PartialArcsKeepEveryDefinedCircle) {
   const RoundnessEvaluation none = evaluate_roundness(arc(90.0, 200), mi_only);
   EXPECT_EQ(none.defined_count(), 0u);
   EXPECT_EQ(none.undefined.size(), 1u);
+  // Issue 12: the coverage then read "0°, closed"; it is the arc's, about the LS centre.
+  EXPECT_FALSE(none.coverage.closed);
+  EXPECT_NEAR(none.coverage.covered_rad * 180.0 / kPi, 90.0, 0.5);
 }
 
 TEST(ReferenceCircleNames, RoundTrip) {

@@ -374,4 +374,26 @@ TEST(LeastSquaresCircleBadInput, CollinearOrIdentical) {
   expect_invalid({{3, 3}, {3, 3}, {3, 3}}, "identical");
 }
 
+// Issue 12: a circle of radius 1e70 mm was called "too close to a straight line". Spans
+// outside 1e-50 … 1e50 mm are refused as such, naming the span; spans just inside still fit.
+TEST(LeastSquaresCircle, SpanOutsideTheDoubleRangeOfItsMomentsIsNamed) {
+  for (const double r : {1e70, 1e-70, 1e300, 1e-300}) {
+    SCOPED_TRACE(r);
+    try {
+      least_squares_circle(circle_points({0, 0}, r, 100));
+      ADD_FAILURE() << "fitted a circle of radius " << r;
+    } catch (const InvalidInput& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("the points span "), std::string::npos) << what;
+      EXPECT_NE(what.find("1e-50 to 1e+50 mm"), std::string::npos) << what;
+      EXPECT_EQ(what.find("straight line"), std::string::npos) << what;
+    }
+  }
+  for (const double r : {1e45, 1e-45}) {
+    const LeastSquaresCircle fit = least_squares_circle(circle_points({3 * r, -r}, r, 100));
+    EXPECT_NEAR(fit.radius / r, 1.0, 1e-12) << r;
+    EXPECT_NEAR(fit.center.x / r, 3.0, 1e-12) << r;
+  }
+}
+
 }  // namespace

@@ -65,7 +65,30 @@ TEST(ReadPointsCsv, RejectsEmptyInput) {
 TEST(ReadPointsCsv, RejectsNonFiniteValuesWithLine) {
   EXPECT_EQ(error_of("1,2\n3,nan\n"), "p.csv:2: field 2 is not finite ('nan')");
   EXPECT_EQ(error_of("inf,2\n"), "p.csv:1: field 1 is not finite ('inf')");
-  EXPECT_EQ(error_of("1,2\n1e999,2\n"), "p.csv:2: field 1 is not finite ('1e999')");
+  EXPECT_EQ(error_of("1,2\n1e999,2\n"), "p.csv:2: field 1 overflows the double range (|x| > 1.8e308): '1e999'");
+}
+
+// Issue 12: 1e-400 was called "not finite"; it is finite as written, and too small for a
+// double.
+TEST(ReadPointsCsv, UnderflowIsCalledUnderflow) {
+  EXPECT_EQ(error_of("1,0\n0,1\n-1,1e-400\n"),
+            "p.csv:3: field 2 underflows: non-zero but below the smallest double (4.9e-324): "
+            "'1e-400'");
+  EXPECT_EQ(read("1,0\n0,1e-310\n-1,0\n").points[1].y, 1e-310);  // subnormal: kept
+}
+
+// Issue 12: a file with CR-only line ends was "no points (empty input)". Every line end is
+// read: \n, \r\n and a lone \r, also mixed, with the line numbers counted alike.
+TEST(ReadPointsCsv, ReadsEveryLineEnd) {
+  for (const std::string eol : {"\n", "\r\n", "\r"}) {
+    const PointTable t = read("x,y" + eol + "1,2" + eol + "3,4" + eol + "5,6");
+    ASSERT_EQ(t.points.size(), 3u) << static_cast<int>(eol.back());
+    EXPECT_EQ(t.points[2].y, 6.0);
+    EXPECT_EQ(t.line[2], 4u);
+    EXPECT_EQ(error_of("1,2" + eol + "3,x" + eol), "p.csv:2: field 2 is not a number ('x')");
+  }
+  EXPECT_EQ(read("1,2\r3,4\r\n5,6\n7,8\r").points.size(), 4u);
+  EXPECT_EQ(read("1,2\r\r\r3,4").line[1], 4u);  // blank CR lines still count
 }
 
 TEST(ReadPointsCsv, RejectsGarbageAndWrongColumnCounts) {

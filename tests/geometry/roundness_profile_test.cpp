@@ -114,15 +114,15 @@ TEST(RoundnessProfileCsv, EveryRuleBrokenGivesFileLineAndField) {
   EXPECT_EQ(message_of([] { read("0,1\n45,2\n90,3\n"); }),
             "p.csv: a closed profile needs at least 8 samples; got 3");
   EXPECT_EQ(message_of([] { read("0,1\n45,nan\n"); }),
-            "p.csv:2: field 2 (deviation_um) is not finite; got 'nan'");
+            "p.csv:2: field 2 (deviation_um) is not finite ('nan')");
   EXPECT_EQ(message_of([] { read("0,1\n45,1e999\n"); }),
-            "p.csv:2: field 2 (deviation_um) is not finite; got '1e999'");
+            "p.csv:2: field 2 (deviation_um) overflows the double range (|x| > 1.8e308): '1e999'");
   EXPECT_EQ(message_of([] { read("0,1\ninf,2\n"); }),
-            "p.csv:2: field 1 (angle_deg) is not finite; got 'inf'");
+            "p.csv:2: field 1 (angle_deg) is not finite ('inf')");
   EXPECT_EQ(message_of([] { read("0,1\nabc,2\n"); }),
-            "p.csv:2: field 1 (angle_deg) is not a number; got 'abc'");
+            "p.csv:2: field 1 (angle_deg) is not a number ('abc')");
   EXPECT_EQ(message_of([] { read("0,1\n45,\n"); }),
-            "p.csv:2: field 2 (deviation_um) is not a number; got ''");
+            "p.csv:2: field 2 (deviation_um) is not a number ('')");
   EXPECT_EQ(message_of([] { read("0,1\n45,2,3\n"); }),
             "p.csv:2: expected 2 fields (angle_deg,deviation_um), found 3");
   EXPECT_EQ(message_of([] { read("0,1\n45\n"); }),
@@ -144,7 +144,7 @@ TEST(RoundnessProfileCsv, EveryRuleBrokenGivesFileLineAndField) {
             "in µm); got 'x_mm,y_mm,z_mm'");
   // Only the first content line may be a header.
   EXPECT_EQ(message_of([] { read(eight_samples() + "angle_deg,deviation_um\n"); }),
-            "p.csv:9: field 1 (angle_deg) is not a number; got 'angle_deg'");
+            "p.csv:9: field 1 (angle_deg) is not a number ('angle_deg')");
   EXPECT_EQ(message_of([] { read("# only a comment\n"); }), "p.csv: no samples (empty profile)");
   EXPECT_EQ(message_of([] { read("angle_deg,deviation_um\n"); }),
             "p.csv: no samples (empty profile)");
@@ -177,7 +177,7 @@ TEST(RoundnessProfileCsv, ReadsAFileAndNamesItInMessages) {
   const std::filesystem::path bad = dir / "bad.csv";
   std::ofstream(bad) << "0,0\n45,NaN\n";
   EXPECT_EQ(message_of([&] { read_roundness_profile_csv_file(bad.string()); }),
-            bad.string() + ":2: field 2 (deviation_um) is not finite; got 'NaN'");
+            bad.string() + ":2: field 2 (deviation_um) is not finite ('NaN')");
   std::filesystem::remove_all(dir);
 }
 

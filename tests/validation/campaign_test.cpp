@@ -368,7 +368,20 @@ TEST_F(CampaignTest, WrongUnitsNameTheExpectedKey) {
   doc = example();
   doc["measurements"][0]["setup"]["temperature_c"] = 293.45;
   EXPECT_EQ(rule_of(doc), "measurements[0] (\"L1-O000-mid-scan\").setup.temperature_c: must lie "
-                          "in [-50, 100] (a temperature in °C; kelvin or °F given?); got 293.45");
+                          "in [-50, 100] °C (a workpiece temperature in °C; kelvin given? 293.45 "
+                          "K = 20.3 °C); got 293.45 °C");
+  doc["measurements"][0]["setup"]["temperature_c"] = 1e300;
+  EXPECT_EQ(rule_of(doc), "measurements[0] (\"L1-O000-mid-scan\").setup.temperature_c: must lie "
+                          "in [-50, 100] °C (a workpiece temperature in °C; kelvin or °F given?); "
+                          "got 1e+300 °C");
+  doc["measurements"][0]["setup"]["temperature_c"] = 20;
+  doc["measurements"][0]["setup"]["location_mm"] = {600, 1e300, 250};
+  EXPECT_EQ(rule_of(doc), "measurements[0] (\"L1-O000-mid-scan\").setup.location_mm[1]: must lie "
+                          "in [-1e+05, 1e+05] mm (a position in a CMM volume); got 1e+300 mm");
+  doc = example();
+  doc["measurements"][0]["setup"]["temperature_c"] = -300;
+  EXPECT_EQ(rule_of(doc), "measurements[0] (\"L1-O000-mid-scan\").setup.temperature_c: is below "
+                          "absolute zero (-273.15 °C): not a temperature in °C; got -300 °C");
 }
 
 TEST_F(CampaignTest, WrongTypesAreNamed) {
@@ -652,7 +665,7 @@ TEST_F(CampaignTest, ReferenceEvaluationErrorsNameTheEntry) {
               (dir_ / "campaign.json").string() +
                   ": measurements[1] (\"C-O090-top-touch\").reference.roundness.profile: " +
                   (dir_ / "reference/L1-mid.csv").string() +
-                  ":3: field 2 (deviation_um) is not a number; got 'abc'");
+                  ":3: field 2 (deviation_um) is not a number ('abc')");
     EXPECT_EQ(e.json_path(), "measurements[1].reference.roundness.profile");
   }
   fs::remove(dir_ / "reference/two-lobe.csv");

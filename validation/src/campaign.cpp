@@ -16,6 +16,7 @@
 #include "vcmm/validation/campaign.h"
 
 #include "vcmm/errormodel/json_input.h"
+#include "vcmm/errormodel/physical_ranges.h"
 
 #include <cmath>
 #include <fstream>
@@ -371,7 +372,14 @@ class Reader {
     const std::string p = join(path, key);
     if (!t->is_array() || t->size() != 3) fail(p, "must be an array of 3 numbers [x, y, z] (mm)", *t);
     std::array<double, 3> xyz{};
-    for (std::size_t k = 0; k < 3; ++k) xyz[k] = number((*t)[k], p + "[" + std::to_string(k) + "]");
+    for (std::size_t k = 0; k < 3; ++k) {  // each a coordinate in a CMM (physical_ranges.h)
+      const std::string pk = p + "[" + std::to_string(k) + "]";
+      xyz[k] = number((*t)[k], pk);
+      if (const std::string problem =
+              errormodel::range_problem(errormodel::physical_range::coordinate_mm, xyz[k]);
+          !problem.empty())
+        fail(pk, problem);
+    }
     return xyz;
   }
 
@@ -427,9 +435,11 @@ class Reader {
     if (const json* t = find(v, "temperature_c")) {
       const std::string p = join(path, "temperature_c");
       const double tc = number(*t, p);
-      // A workpiece in a CMM room: a value outside this range is almost surely in kelvin or °F.
-      if (tc < -50.0 || tc > 100.0)
-        fail(p, "must lie in [-50, 100] (a temperature in °C; kelvin or °F given?)", *t);
+      // A workpiece in a CMM room (physical_ranges.h): outside, kelvin or °F was given.
+      if (const std::string problem =
+              errormodel::range_problem(errormodel::physical_range::temperature_c, tc);
+          !problem.empty())
+        fail(p, problem);
       s.temperature_c = tc;
     }
     return s;

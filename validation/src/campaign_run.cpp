@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <cmath>
 #include <fstream>
@@ -17,6 +19,7 @@
 #include "internal/number_text.h"
 #include "vcmm/errormodel/atomic_file.h"
 #include "vcmm/errormodel/digital_model.h"
+#include "vcmm/uncertainty/errors.h"
 #include "vcmm/validation/comparison.h"
 #include "vcmm/validation/provenance.h"
 #include "vcmm/validation/ring_uncertainty_report.h"
@@ -42,7 +45,8 @@ constexpr const char* kOutcomeFormat = "vcmm.campaign_measurement.v2";
 
 std::string read_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
-  if (!in) throw std::runtime_error("run_campaign: cannot read '" + p.string() + "'");
+  if (!in)
+    throw geometry::InvalidInput(p.string() + ": cannot read the file: " + std::strerror(errno));
   std::ostringstream os;
   os << in.rdbuf();
   return os.str();
@@ -498,8 +502,43 @@ std::string treatments_csv(const std::vector<TreatmentRow>& rows) {
 void ensure_dir(const fs::path& p) {
   std::error_code ec;
   fs::create_directories(p, ec);
-  if (ec) throw std::runtime_error("run_campaign: cannot create directory '" + p.string() +
-                                   "': " + ec.message());
+  if (ec)
+    throw em::OutputError(p.string() + ": cannot create the output directory: " + ec.message());
+}
+
+/// Rethrows the exception in flight with measurement i of the campaign named in front, of the
+/// same kind (so the `vcmm` exit code stays that of the problem): every per-entry error says
+/// which entry it is about. Errors that name the entry already, and output paths, pass as
+/// they are.
+[[noreturn]] void rethrow_for_entry(const Campaign& c, std::size_t i) {
+  const std::string index = "measurements[" + std::to_string(i) + "]";
+  const std::string where = c.source + ": " + index + " (\"" + c.measurements[i].id + "\"): ";
+  const auto invalid = [&](const std::string& what) {
+    return CampaignError(c.source, i, c.measurements[i].id, index, where + what);
+  };
+  try {
+    throw;
+  } catch (const CampaignError&) {
+    throw;
+  } catch (const em::OutputError&) {
+    throw;
+  } catch (const uncertainty::ExperimentError& e) {  // a Monte Carlo trial: keep its kind
+    try {
+      std::rethrow_if_nested(e);
+    } catch (const geometry::UndefinedResult&) {
+      throw geometry::UndefinedResult(where + e.what());
+    } catch (const std::invalid_argument&) {
+      throw invalid(e.what());
+    } catch (...) {
+    }
+    throw std::runtime_error(where + e.what());
+  } catch (const geometry::UndefinedResult& e) {
+    throw geometry::UndefinedResult(where + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw invalid(e.what());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(where + e.what());
+  }
 }
 
 }  // namespace
@@ -564,7 +603,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
   evaluation.filter_cutoff_upr = ev.filter_cutoff_upr;
   const bool run_denoised = options.denoised_treatment && ev.filter_cutoff_upr.has_value();
 
-  for (std::size_t i = 0; i < campaign.measurements.size(); ++i) {
+  for (std::size_t i = 0; i < campaign.measurements.size(); ++i) try {
     const CampaignMeasurement& entry = campaign.measurements[i];
     // Fingerprint: everything this measurement's numbers depend on.
     Fingerprint fp;
@@ -697,6 +736,8 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     MeasurementOutcome stored = outcome_from_json(json::parse(text));
     outcome.measurements.push_back(std::move(stored));
     ++outcome.computed;
+  } catch (...) {
+    rethrow_for_entry(campaign, i);
   }
   outcome.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -12,6 +12,7 @@
 
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/point.h"
+#include "vcmm/geometry/text_lines.h"
 
 namespace vcmm::validation {
 namespace {
@@ -160,7 +161,7 @@ em::Measurement measurement_from_roundness_profile(const geometry::RoundnessProf
 MeasurementFileKind detect_measurement_file_kind(const std::string& text) {
   std::istringstream in(text);
   std::string line;
-  while (std::getline(in, line)) {
+  while (geometry::read_text_line(in, line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     const auto first = line.find_first_not_of(" \t");

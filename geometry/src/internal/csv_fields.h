@@ -1,6 +1,6 @@
 // internal/csv_fields.h — the field rules shared by the CSV readers of vcmm::geometry
 // (docs/formats.md): trimming, splitting a line on ',' / ';' or on runs of blanks and tabs,
-// parsing a field as a finite double. Used by point_io.cpp and roundness_profile.cpp. Not public
+// parsing a field as a finite double (number_field.h). Used by point_io.cpp and roundness_profile.cpp. Not public
 // API.
 #pragma once
 
@@ -11,6 +11,8 @@
 #include <string_view>
 #include <system_error>
 #include <vector>
+
+#include "vcmm/geometry/number_field.h"
 
 namespace vcmm::geometry::internal {
 
@@ -67,35 +69,27 @@ inline std::vector<std::string_view> split_csv_fields(std::string_view s) {
   return out;
 }
 
-/// The lines of a whole text (split on '\n'; a final line without '\n' counts; a trailing
-/// '\r' stays for trim_blanks). Calls `line(text_of_line)` for each, in order.
+/// The lines of a whole text, whatever their ends: "\n", "\r\n" or a lone "\r" (as
+/// text_lines.h's read_text_line; a final line without an end counts). Calls
+/// `line(text_of_line)` for each, in order, without its end.
 template <class OnLine>
 void for_each_line(std::string_view text, OnLine line) {
   std::size_t start = 0;
   while (start < text.size()) {
-    const auto nl = text.find('\n', start);
-    const std::size_t end = nl == std::string_view::npos ? text.size() : nl;
+    std::size_t end = start;
+    while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
     line(text.substr(start, end - start));
+    if (end < text.size() && text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n')
+      ++end;
     start = end + 1;
   }
 }
 
-enum class FieldStatus {
-  ok,
-  not_a_number,  ///< empty, or not a number in full ("abc", "1.5x")
-  non_finite,    ///< "nan", "inf", or beyond the double range ("1e999")
-};
+using FieldStatus = NumberFieldStatus;
 
-/// Parses a whole field as a double (an optional leading '+' allowed), std::from_chars rules.
+/// Parses a whole field as a double (number_field.h).
 inline FieldStatus parse_double_field(std::string_view f, double& value) {
-  if (f.empty()) return FieldStatus::not_a_number;
-  if (f.front() == '+') f.remove_prefix(1);
-  const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
-  if (ptr != f.data() + f.size()) return FieldStatus::not_a_number;
-  if (ec == std::errc::result_out_of_range) return FieldStatus::non_finite;
-  if (ec != std::errc()) return FieldStatus::not_a_number;
-  if (!std::isfinite(value)) return FieldStatus::non_finite;
-  return FieldStatus::ok;
+  return parse_number_field(f, value);
 }
 
 /// A plain decimal "[-]digits[.digits]" of at most 15 digits at the start of [p, end), as

@@ -25,7 +25,8 @@ struct LeastSquaresCircle {
 /// algebraic (Kåsa) fit. Throws UndefinedResult when the data are too close to a straight
 /// line for double precision (radius beyond ~1e8 times the extent).
 /// Duplicated points count with their multiplicity.
-/// Preconditions: ≥ 3 finite points, not all collinear (InvalidInput).
+/// Preconditions: ≥ 3 finite points, not all collinear, spanning 1e-50 … 1e50 mm (the range
+/// in which its moments stay in double range) (InvalidInput).
 /// Accuracy: reproduces NIST's Circle2d reference fits (60-digit) to ~1e-13 mm.
 /// Complexity O(n) per iteration, typically 2 iterations on ring data (≤ 6 on NIST sets).
 LeastSquaresCircle least_squares_circle(std::span<const Point2> points);

@@ -60,7 +60,7 @@ std::string profile_sample_location(const RoundnessProfile& profile, std::size_t
 /// Converts θ = angle_deg / 180 · π (exact for 0°, 90°, 180°, 270°), d = deviation_um · 1e-3
 /// (correctly rounded products: relative error ≤ 2⁻⁵³ each). The result's `source` is
 /// `source_name`, `line` the line of each sample. Throws InvalidInput naming source, line and
-/// field, e.g. "ref.csv:3: field 2 (deviation_um) is not a number; got 'abc'" ("source: ..."
+/// field, e.g. "ref.csv:3: field 2 (deviation_um) is not a number ('abc')" ("source: ..."
 /// for whole-file rules such as too few samples or no samples). O(n).
 RoundnessProfile read_roundness_profile_csv(std::istream& in, const std::string& source_name);
 

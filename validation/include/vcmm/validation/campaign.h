@@ -204,7 +204,7 @@ struct Campaign {
 /// integer; coverage_probability in (0, 1); k > 0; at least one measurement; ids matching
 /// [A-Za-z0-9_.-]+, not "." or "..", at most max_measurement_id_length characters, unique;
 /// location labels matching [A-Za-z0-9_.-]+ (they go into CSV tables unquoted); location_mm
-/// three numbers; temperature_c in [−50, 100] °C (a kelvin value is caught); a reference
+/// three numbers; temperature_c in [−50, 100] °C (errormodel/physical_ranges.h: a kelvin value is caught); a reference
 /// with roundness and/or diameter, each in exactly one of its two forms (value_um ≥ 0,
 /// value_mm > 0, interferometer_distance_mm > 0, every u ≥ 0); every referenced file (model,
 /// points, profiles) an existing regular file — the message names the entry and the resolved

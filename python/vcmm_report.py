@@ -1292,15 +1292,22 @@ def reference_and_filter(run):
 def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
     colors = ["C0", "C3", "C2", "C1", "C4", "C5", "C6", "C7"]
     symbol, circle_name, filter_text = reference_and_filter(run)
-    # The radial axis is in µm and follows the data: its rings are 'nice' steps covering the
-    # smallest and largest deviation of the profiles shown (filtered or not).
+    # The unrolled panels show every point; the polar plot's radial axis (µm) follows the
+    # filtered profiles, whose zone RONt is evaluated on: 'nice' rings from just below the
+    # smallest to just above the largest filtered deviation (and 0), so that a 1 µm form is
+    # not flattened by the noise of the unfiltered points, which are drawn only within it.
     lowest = min(min(min(p.deviation_um), min(p.filtered_um)) for _, p in profiles)
     highest = max(max(max(p.deviation_um), max(p.filtered_um)) for _, p in profiles)
     lowest, highest = min(lowest, 0.0), max(highest, 0.0)
-    step = nice_ceil((highest - lowest) / 4.0) if highest > lowest else 0.1
-    r_low = step * math.floor(lowest / step - 1e-9)
-    r_high = step * math.ceil(highest / step + 1e-9)
-    span = r_high - r_low
+    span = highest - lowest if highest > lowest else 1.0
+    filtered_low = min(0.0, min(min(p.filtered_um) for _, p in profiles))
+    filtered_high = max(0.0, max(max(p.filtered_um) for _, p in profiles))
+    margin = 0.1 * (filtered_high - filtered_low)
+    step = nice_ceil((filtered_high - filtered_low) / 4.0) if filtered_high > filtered_low \
+        else 0.1
+    r_low = step * math.floor((filtered_low - margin) / step + 1e-9)
+    r_high = step * math.ceil((filtered_high + margin) / step - 1e-9)
+    r_span = r_high - r_low
 
     n = len(profiles)
     fig = plt.figure(figsize=(13.5, max(6.4, 1.9 * n + 2.4)))
@@ -1321,7 +1328,9 @@ def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
         ront = outer - inner
         ront_text = format_with_uncertainty(ront, m.value("roundness", "u"))
         ronts[m.id] = ront
-        polar.scatter(angle, deviation, s=3, color=color, alpha=0.25, lw=0, zorder=1)
+        inside = (deviation >= r_low) & (deviation <= r_high)
+        polar.scatter(angle[inside], deviation[inside], s=3, color=color, alpha=0.25, lw=0,
+                      zorder=1)
         closed_angle = np.append(angle, angle[0] + 2.0 * np.pi)
         closed = np.append(filtered, filtered[0])
         legend.append(polar.plot(closed_angle, closed, color=color, lw=1.5, zorder=2,
@@ -1356,9 +1365,9 @@ def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
 
     # The deviation annulus occupies the outer half of the polar plot's radius; the hole
     # keeps the base circle (deviation 0) well away from the centre.
-    polar.set_rorigin(r_low - 1.2 * span)
+    polar.set_rorigin(r_low - 1.2 * r_span)
     polar.set_ylim(r_low, r_high)
-    rings = [r_low + j * step for j in range(int(round(span / step)) + 1)]
+    rings = [r_low + j * step for j in range(int(round(r_span / step)) + 1)]
     polar.set_yticks(rings)
     polar.set_yticklabels(["0" if abs(r) < 1e-9 * step else f"{r:+.10g}".replace("-", "−")
                            for r in rings],
@@ -1379,16 +1388,17 @@ def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
     fig.suptitle(f"{title} — RONt about the {circle_name} circle, {filter_text}",
                  fontweight="bold")
     limits = {"polar": tuple(polar.get_ylim()), "unrolled": tuple(unrolled[0].get_ylim()),
-              "data": (lowest, highest)}
+              "filtered": (filtered_low, filtered_high), "all": (lowest, highest)}
     texts = save(plt, fig, path)
     caption = (
         "Radial deviations of the corrected measured profile about the run's reference "
         f"circle ({circle_name}; {filter_text}), "
         + ("at two locations (same orientation, height and mode)" if kind == "locations"
            else "at one location, every orientation")
-        + ". Left: polar plot with the radial axis in µm, scaled to the data (rings every "
-        f"{step:g} µm from {r_low:+.10g} to {r_high:+.10g} µm; the radius itself is not to "
-        "scale): the black dashed base circle is zero deviation, i.e. the reference circle; "
+        + ". Left: polar plot with the radial axis in µm, scaled to the filtered profiles "
+        f"(rings every {step:g} µm from {r_low:+.10g} to {r_high:+.10g} µm; unfiltered points "
+        "outside that range are left out here; the radius itself is not to scale): the "
+        "black dashed base circle is zero deviation, i.e. the reference circle; "
         "the dotted circles of each profile's colour are its zone — the two circles "
         "concentric with the reference circle that enclose the filtered profile, RONt "
         f"apart (for MZ the minimum zone; for MI the inner one is the reference circle). "

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Validation figures and a self-contained HTML report for a vcmm validation run.
 
-Usage:  /usr/bin/python3 python/vcmm_report.py OUTDIR [--title T]
+Usage:  vcmm report OUTDIR [--title T]       (finds a Python with matplotlib; docs/cli.md)
+        /usr/bin/python3 python/vcmm_report.py OUTDIR [--title T]
 
 OUTDIR is the output directory of `vcmm validate CAMPAIGN.json -o OUTDIR` or
 `vcmm demo -o OUTDIR` (format v2, with the bias-treatment columns; described in docs/report.md
@@ -10,7 +11,8 @@ and docs/validation.md "Output directory"):
   treatments.csv, run_info.json            optional (demo / provenance)
   samples/<id>.csv, residuals/<id>.csv     optional; read only for the measurements shown
   results.json, summary.json               only linked from the report
-Writes OUTDIR/figures/*.png (matplotlib, Agg backend, 110 dpi) and OUTDIR/report.html, a single
+Writes every figure as OUTDIR/figures/NAME.svg, NAME.pdf and NAME.png (matplotlib, Agg backend,
+200 dpi) and OUTDIR/report.html, a single
 self-contained file (inline CSS, images embedded as base64 data URIs, no script, no external
 URL) that can be mailed.  Every file is written atomically: a temporary file in the same
 directory, then os.replace, so an interrupted run never leaves a half-written file that looks
@@ -36,7 +38,12 @@ Exit codes: 0 success; 1 internal error (a bug, with a traceback) or matplotlib 
 be written.
 
 Cost: linear in the size of results.csv and summary.csv plus the few samples/residuals files
-shown; about 5 s of CPU for 66 measurements, dominated by matplotlib's rendering.
+shown; about 20 s of CPU for 66 measurements, dominated by matplotlib's rendering of the three
+formats.
+
+Number style (docs/report.md): u with two significant digits and values to the same decimal
+place (GUM 7.2.6), U = k u labelled "U (k = 2)", E_n typeset as $E_n$ with its sign
+convention (reference − measured) stated beside the numbers.
 
 Runs with Debian's /usr/bin/python3 (python3-matplotlib 3.6, python3-numpy 1.24); the
 `python3` first on PATH may be another interpreter without matplotlib.

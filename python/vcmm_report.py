@@ -141,9 +141,6 @@ EN_AXIS_CAP = 5.0
 # Series sharing a panel of a per-measurement figure are spread over this fraction of the
 # distance between two measurements, so that none hides another.
 SERIES_SPREAD = 0.5
-# Per-measurement figures label each measurement with its id when every id is at most this
-# long (the demo's are 16-18 characters); longer ids get orientation and height instead.
-MAX_ID_TICK_LENGTH = 24
 # Angles of residual profiles: 0..360 deg within this slack (printing round-off).
 ANGLE_SLACK_DEG = 1e-6
 
@@ -2072,11 +2069,9 @@ def results_section(run):
         if not r.correction_applied:
             refused |= REFUSED_DEFAULT_COLUMNS
         if not r.paper_applied:
-            refused |= REFUSED_PAPER_COLUMNS | {name for name, source in expanded.items()
-                                                if source in REFUSED_PAPER_COLUMNS}
-        if not r.correction_applied:
-            refused |= {name for name, source in expanded.items()
-                        if source in REFUSED_DEFAULT_COLUMNS}
+            refused |= REFUSED_PAPER_COLUMNS
+        # An expanded uncertainty is shaded with the standard uncertainty it is k times.
+        refused |= {name for name, source in expanded.items() if source in refused}
         refused_rows += bool(refused)
         decimals = row_decimals(r)
         cells = []

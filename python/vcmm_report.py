@@ -897,7 +897,7 @@ def top_legend(fig, handles, ncol, title):
     fig.suptitle(title, y=1.0 - 0.05 / height, va="top", fontweight="bold")
     fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 1.0 - 0.3 / height),
                ncol=ncol, frameon=False)
-    fig.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - strip))
+    fig.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - strip), pad=0.5)
 
 
 def two_row_legend(plt, first, second):
@@ -1225,10 +1225,9 @@ def figure_errors(plt, np, run, path):
             drawn[f"{measurand}: {short}"] = len(idx)
             if idx:
                 handles.setdefault(treatment, series_handle(
-                    plt, run.label(treatment) + (" ± k·u_corrected (incl. u_bias)"
-                                                 if treatment == "corrected" else
-                                                 " ± k·u_corrected_paper"
-                                                 if treatment == "paper" else " ± k·u"),
+                    plt, run.label(treatment) + f" ± U (k = {k:g})" + (
+                        ", U = k·u_corrected (incl. u_bias)" if treatment == "corrected" else
+                        ", U = k·u_corrected_paper" if treatment == "paper" else ", U = k·u"),
                     color, filled))
         ax.text(0.005, 0.97, "truth within ±U — " + "; ".join(coverage),
                 transform=ax.transAxes, va="top", ha="left", fontsize=8,

@@ -458,8 +458,8 @@ class FigureContents(unittest.TestCase):
             "roundness: uncorrected": n, "roundness: corrected (default: shrinkage)": n,
             "roundness: (a) seed study": n})
         self.assertTrue(any(t.startswith("truth within ±U — uncorrected:") for t in f.texts))
-        self.assertIn("corrected (default: shrinkage; diameter: paper) ± k·u_corrected "
-                      "(incl. u_bias)", f.texts)
+        self.assertIn("corrected (default: shrinkage; diameter: paper) ± U (k = 2), "
+                      "U = k·u_corrected (incl. u_bias)", f.texts)
 
     def test_treatments_figure_has_a_seed_study_bar(self):
         f = self.figures["treatments"]

@@ -858,9 +858,10 @@ def import_matplotlib():
         import matplotlib.pyplot as plt
         import numpy as np
     except ImportError as e:
-        raise MissingDependency(f"matplotlib/numpy not available ({e}); run the script with "
-                           "/usr/bin/python3 (Debian python3-matplotlib python3-numpy)") \
-            from None
+        raise MissingDependency(f"matplotlib/numpy not available to {sys.executable} ({e}); "
+                                "run `vcmm report OUTDIR`, which finds a Python that has "
+                                "them, or install them: apt-get install python3-matplotlib "
+                                "python3-numpy") from None
     plt.rcParams.update({
         "font.size": 9, "axes.titlesize": 10, "axes.labelsize": 9, "legend.fontsize": 8,
         "xtick.labelsize": 8, "ytick.labelsize": 8, "axes.grid": True, "grid.alpha": 0.3,
@@ -2139,6 +2140,12 @@ def results_section(run):
     return note + "".join(out)
 
 
+def figure_files(figure):
+    """The file names of a figure, PNG first, then the vector formats written beside it."""
+    stem = os.path.splitext(figure.filename)[0]
+    return [stem + "." + kind for kind in FIGURE_FORMATS]
+
+
 def write_html(run, figures, notes, title):
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     parts = ["<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n",
@@ -2177,8 +2184,9 @@ def write_html(run, figures, notes, title):
         else:
             parts.append(f"<li>{esc(name)} — not present</li>\n")
     for f in figures:
-        parts.append(f"<li><a href=\"{href('figures/' + f.filename)}\">figures/"
-                     f"{esc(f.filename)}</a> — {esc(f.title)}</li>\n")
+        parts.append(f"<li>{esc(f.title)}: " + " · ".join(
+            f"<a href=\"{href('figures/' + name)}\">figures/{esc(name)}</a>"
+            for name in figure_files(f)) + "</li>\n")
     parts.append("</ul>\n")
 
     parts.append("<h2 id=\"summary\">Summary (summary.csv)</h2>\n")
@@ -2237,8 +2245,10 @@ def write_html(run, figures, notes, title):
             data = base64.b64encode(png.read()).decode("ascii")
         parts.append(f"<figure id=\"{esc(f.filename)}\"><h3>{esc(f.title)}</h3>"
                      f"<img src=\"data:image/png;base64,{data}\" alt=\"{esc(f.title)}\">"
-                     f"<figcaption>{esc(f.caption)} (<a href=\"{href('figures/' + f.filename)}"
-                     f"\">{esc(f.filename)}</a>)</figcaption></figure>\n")
+                     f"<figcaption>{esc(f.caption)} ("
+                     + ", ".join(f"<a href=\"{href('figures/' + name)}\">{esc(name)}</a>"
+                                 for name in figure_files(f))
+                     + ")</figcaption></figure>\n")
 
     parts.append("<h2 id=\"results\">Per-measurement results (results.csv)</h2>\n")
     parts.append(results_section(run))
@@ -2280,9 +2290,8 @@ def main(argv=None):
         traceback.print_exc()
         return 1
     for f in figures:
-        stem = os.path.join(run.outdir, "figures", os.path.splitext(f.filename)[0])
-        for kind in FIGURE_FORMATS:
-            print(stem + "." + kind)
+        for name in figure_files(f):
+            print(os.path.join(run.outdir, "figures", name))
     print(os.path.join(run.outdir, "report.html"))
     for note in notes:
         print(f"{PROG}: note: {note}", file=sys.stderr)

@@ -221,7 +221,7 @@ class DemoDirectory(unittest.TestCase):
         hrefs = {a.get("href") for tag, a in self.page.tags if tag == "a"}
         for name in ("results.csv", "summary.csv", "results.json", "treatments.csv",
                      "figures/en_per_measurement.png", "figures/errors_per_measurement.png",
-                     "figures/factors.png"):
+                     "figures/factors.png", "figures/factors.svg", "figures/factors.pdf"):
             self.assertIn(name, hrefs)
 
     def test_results_table_has_expanded_uncertainties_and_the_sign_of_en(self):

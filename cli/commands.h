@@ -40,4 +40,7 @@ void add_characterize_hole_plate_command(CLI::App& characterize, int* exit_code)
 void add_characterize_sphere_command(CLI::App& characterize, int* exit_code);
 void add_characterize_noise_command(CLI::App& characterize, int* exit_code);
 
+/// Registers `vcmm report` (runs python/vcmm_report.py with a Python that has matplotlib).
+void add_report_command(CLI::App& app, int* exit_code);
+
 }  // namespace vcmm::cli

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   vcmm::cli::add_validate_command(app, &exit_code);
   vcmm::cli::add_demo_command(app, &exit_code);
   vcmm::cli::add_characterize_command(app, &exit_code);
+  vcmm::cli::add_report_command(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Validation figures and a self-contained HTML report for a vcmm validation run.
 
-Usage:  /usr/bin/python3 python/vcmm_report.py OUTDIR [--title T]
+Usage:  vcmm report OUTDIR [--title T]       (finds a Python with matplotlib; docs/cli.md)
+        /usr/bin/python3 python/vcmm_report.py OUTDIR [--title T]
 
 OUTDIR is the output directory of `vcmm validate CAMPAIGN.json -o OUTDIR` or
 `vcmm demo -o OUTDIR` (format v2, with the bias-treatment columns; described in docs/report.md
@@ -10,7 +11,8 @@ and docs/validation.md "Output directory"):
   treatments.csv, run_info.json            optional (demo / provenance)
   samples/<id>.csv, residuals/<id>.csv     optional; read only for the measurements shown
   results.json, summary.json               only linked from the report
-Writes OUTDIR/figures/*.png (matplotlib, Agg backend, 110 dpi) and OUTDIR/report.html, a single
+Writes every figure as OUTDIR/figures/NAME.svg, NAME.pdf and NAME.png (matplotlib, Agg backend,
+200 dpi) and OUTDIR/report.html, a single
 self-contained file (inline CSS, images embedded as base64 data URIs, no script, no external
 URL) that can be mailed.  Every file is written atomically: a temporary file in the same
 directory, then os.replace, so an interrupted run never leaves a half-written file that looks
@@ -36,7 +38,12 @@ Exit codes: 0 success; 1 internal error (a bug, with a traceback) or matplotlib 
 be written.
 
 Cost: linear in the size of results.csv and summary.csv plus the few samples/residuals files
-shown; about 5 s of CPU for 66 measurements, dominated by matplotlib's rendering.
+shown; about 20 s of CPU for 66 measurements, dominated by matplotlib's rendering of the three
+formats.
+
+Number style (docs/report.md): u with two significant digits and values to the same decimal
+place (GUM 7.2.6), U = k u labelled "U (k = 2)", E_n typeset as $E_n$ with its sign
+convention (reference − measured) stated beside the numbers.
 
 Runs with Debian's /usr/bin/python3 (python3-matplotlib 3.6, python3-numpy 1.24); the
 `python3` first on PATH may be another interpreter without matplotlib.
@@ -57,7 +64,9 @@ import traceback
 import urllib.parse
 
 PROG = "vcmm_report.py"
-DPI = 110
+# PNG resolution (dpi); every figure is written as SVG and PDF (vector) beside its PNG.
+DPI = 200
+FIGURE_FORMATS = ("png", "svg", "pdf")
 
 RESULTS_COLUMNS = (
     "id", "location", "orientation_deg", "height", "mode", "measurand", "unit", "reference",
@@ -121,19 +130,17 @@ ID_PATTERN = re.compile(r"[A-Za-z0-9_.-]+\Z")
 # RMS 1/k and P(|E_n| <= 1) = P(|z| <= k) = erf(k / sqrt 2); for k = 2: 0.5 and 95.4 %
 # (NOTES.md: "|E_n| > 1 happens 4.6 % of the time").  See Run.expected_rms/expected_share.
 EXPECTED_MEAN_EN = 0.0
+# The sign convention of E_n (the study's: reference − measured), written next to the numbers.
+EN_DEFINITION = "E_n = (reference − measured) / √(U_ref² + U²), U = k·u"
+EN_DEFINITION_TEX = (r"$E_n = (y_\mathrm{ref} - y)\,/\,\sqrt{U_\mathrm{ref}^2 + U^2}$ "
+                     "(reference − measured), U = k·u")
 
 # E_n axes: values beyond this are drawn at the edge with their value written beside them,
 # so that one wild point does not flatten the +-1 band of the others.
 EN_AXIS_CAP = 5.0
 # Series sharing a panel of a per-measurement figure are spread over this fraction of the
 # distance between two measurements, so that none hides another.
-SERIES_SPREAD = 0.36
-# Per-measurement figures label each measurement with its id when every id is at most this
-# long (the demo's are 16-18 characters); longer ids get orientation and height instead.
-MAX_ID_TICK_LENGTH = 24
-# Polar residual plots: the largest |deviation| shown, rounded up to 1, 2, 2.5 or 5 x 10^n um,
-# spans this fraction of the base radius.
-POLAR_SPAN = 0.35
+SERIES_SPREAD = 0.5
 # Angles of residual profiles: 0..360 deg within this slack (printing round-off).
 ANGLE_SLACK_DEG = 1e-6
 
@@ -840,6 +847,8 @@ class Figure:
     # per-measurement figures, the number of points of each series, keyed "panel: label".
     texts: list = dataclasses.field(default_factory=list)
     series: dict = dataclasses.field(default_factory=dict)
+    # Axis limits that follow the data, e.g. {"polar": (low, high), "data": (min, max)}.
+    limits: dict = dataclasses.field(default_factory=dict)
 
 
 def import_matplotlib():
@@ -849,26 +858,33 @@ def import_matplotlib():
         import matplotlib.pyplot as plt
         import numpy as np
     except ImportError as e:
-        raise MissingDependency(f"matplotlib/numpy not available ({e}); run the script with "
-                           "/usr/bin/python3 (Debian python3-matplotlib python3-numpy)") \
-            from None
+        raise MissingDependency(f"matplotlib/numpy not available to {sys.executable} ({e}); "
+                                "run `vcmm report OUTDIR`, which finds a Python that has "
+                                "them, or install them: apt-get install python3-matplotlib "
+                                "python3-numpy") from None
     plt.rcParams.update({
         "font.size": 9, "axes.titlesize": 10, "axes.labelsize": 9, "legend.fontsize": 8,
         "xtick.labelsize": 8, "ytick.labelsize": 8, "axes.grid": True, "grid.alpha": 0.3,
-        "savefig.dpi": DPI,
+        "savefig.dpi": DPI, "svg.hashsalt": "vcmm", "svg.fonttype": "none",
+        "pdf.fonttype": 42,
     })
     return plt, np
 
 
 def save(plt, fig, path):
-    """Writes the PNG atomically, closes the figure; returns every non-empty text drawn."""
+    """Writes the figure as PNG (DPI), SVG and PDF beside each other (path ends in .png),
+    each atomically; closes the figure; returns every non-empty text drawn."""
     import matplotlib.text
+    # No date or software version in the files: the same input gives the same bytes.
+    metadata = {"png": {"Software": None}, "svg": {"Date": None},
+                "pdf": {"CreationDate": None, "Producer": None}}
+    stem = os.path.splitext(path)[0]
     try:
         texts = [t.get_text() for t in fig.findobj(matplotlib.text.Text)
                  if t.get_text() and t.get_visible()]
-        write_atomically(path, lambda f: fig.savefig(f, format="png", dpi=DPI,
-                                                     bbox_inches="tight",
-                                                     metadata={"Software": None}))
+        for kind in FIGURE_FORMATS:
+            write_atomically(stem + "." + kind, lambda f, kind=kind: fig.savefig(
+                f, format=kind, dpi=DPI, bbox_inches="tight", metadata=metadata[kind]))
     finally:
         plt.close(fig)
     return texts
@@ -882,7 +898,7 @@ def top_legend(fig, handles, ncol, title):
     fig.suptitle(title, y=1.0 - 0.05 / height, va="top", fontweight="bold")
     fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 1.0 - 0.3 / height),
                ncol=ncol, frameon=False)
-    fig.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - strip))
+    fig.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - strip), pad=0.5)
 
 
 def two_row_legend(plt, first, second):
@@ -916,6 +932,31 @@ def nice_ceil(x):
     return 10.0 * e
 
 
+def gum_decimals(u):
+    """Decimal places that give the standard uncertainty u two significant digits (GUM
+    7.2.6: u to at most two significant digits, the value to the same decimal place); None
+    when u is not a positive finite number.  Never negative: 29 um stays '29'."""
+    if u is None or not math.isfinite(u) or not u > 0:
+        return None
+    decimals = 1 - math.floor(math.log10(u))
+    if decimals > 0 and round(u, decimals) >= 10.0 ** (2 - decimals):
+        decimals -= 1                  # 0.0996 rounds to 0.100: two digits are '0.10'
+    return max(0, decimals)
+
+
+def format_with_uncertainty(value, u, *, signed=False, fallback=".4g"):
+    """value rounded to the decimal place of u's second significant digit (GUM style), e.g.
+    a bias of +0.000828 um next to u = 0.291 um is '+0.00'.  No '-0.00'."""
+    if value is None:
+        return "n/a"
+    decimals = gum_decimals(u)
+    text = format(value, ("+" if signed else "") + (fallback if decimals is None else
+                                                    f".{decimals}f"))
+    if decimals is not None and float(text) == 0.0:
+        text = ("+" if signed else "") + format(0.0, f".{decimals}f")
+    return text
+
+
 def series_offsets(count):
     """x offsets of `count` series sharing a panel: side by side within SERIES_SPREAD of the
     measurement's position, so that no marker hides another."""
@@ -927,7 +968,7 @@ def series_offsets(count):
 
 def measurement_figure(plt, ms, panels, panel_height):
     """A figure of `panels` stacked panels sharing the measurement axis."""
-    width = min(24.0, max(10.0, 0.2 * len(ms) + 3.0))
+    width = min(28.0, max(10.0, 0.24 * len(ms) + 3.0))
     fig, axes = plt.subplots(panels, 1, sharex=True, squeeze=False,
                              figsize=(width, panel_height * panels + 1.6))
     return fig, list(axes[:, 0])
@@ -945,23 +986,27 @@ def draw_setup_boundaries(ax, ms):
 
 
 def label_measurement_axis(ax, run, ms):
-    """Tick labels of the shared measurement axis: the ids when they are short (they name
-    location, orientation, height and mode, and tell a repeated set-up apart), else the
-    orientation and height initial (a repeat marked ′); location names in bold below."""
-    x = list(range(len(ms)))
+    """Horizontal labels of the shared measurement axis on three levels: under each
+    measurement its height initial (t, m, b; the marker gives the mode), under each set-up
+    its orientation (a repeated set-up marked ′), under each location its name in bold."""
     ax.set_xlim(-0.6, len(ms) - 0.4)
-    use_ids = max(len(m.id) for m in ms) <= MAX_ID_TICK_LENGTH
     multiple_heights = len({m.height for m in ms}) > 1
-    if use_ids:
-        minor_labels = [m.id for m in ms]
-        what = "tick label = measurement id"
-    else:
-        minor_labels = [f"{m.orientation_deg:g}" + (f" {m.height[:1]}" if multiple_heights
-                                                    else "") + "′" * m.repeat for m in ms]
-        what = ("tick label = orientation (°)" + (", height initial" if multiple_heights
-                                                  else "")
-                + ("; ′ a repeated set-up" if any(m.repeat for m in ms) else ""))
-    ax.set_xticks(x, minor_labels, minor=True)
+    ax.set_xticks(range(len(ms)), [m.height[:1] if multiple_heights else "" for m in ms],
+                  minor=True)
+    ax.tick_params(axis="x", which="minor", labelsize=8, length=2)
+    blocks = []            # [first index, last index, (location, orientation, repeat)]
+    for i, m in enumerate(ms):
+        key = (m.location, m.orientation_deg, m.repeat)
+        if blocks and blocks[-1][2] == key:
+            blocks[-1][1] = i
+        else:
+            blocks.append([i, i, key])
+    setup_offset = -16.0 if multiple_heights else -4.0      # points below the axis
+    for first, last, (_, orientation, repeat) in blocks:
+        ax.annotate(f"{orientation:g}°" + "′" * repeat, xy=(0.5 * (first + last), 0.0),
+                    xycoords=("data", "axes fraction"), xytext=(0.0, setup_offset),
+                    textcoords="offset points", ha="center", va="top", fontsize=8,
+                    color="0.25", annotation_clip=False)
     centres, names = [], []
     for location in run.locations:
         idx = [i for i, m in enumerate(ms) if m.location == location]
@@ -969,14 +1014,13 @@ def label_measurement_axis(ax, run, ms):
             centres.append(0.5 * (idx[0] + idx[-1]))
             names.append(location)
     ax.set_xticks(centres, names)
-    ax.tick_params(axis="x", which="minor", labelsize=7, labelrotation=90, length=2)
-    # The location names go below the rotated minor labels: ~4.5 pt per 7-pt character.
-    pad = 8.0 + 4.5 * max(len(label) for label in minor_labels)
-    ax.tick_params(axis="x", which="major", length=0, pad=pad, labelsize=9)
+    ax.tick_params(axis="x", which="major", length=0, pad=-setup_offset + 14.0, labelsize=10)
     for label in ax.get_xticklabels(minor=False):
         label.set_fontweight("bold")
-    ax.set_xlabel("measurement, grouped by location (bold names; solid lines) and set-up "
-                  f"(dotted lines); {what}; marker = mode")
+    ax.set_xlabel("measurement: "
+                  + ("height (t top, m middle, b bottom) / " if multiple_heights else "")
+                  + "set-up orientation (′ a repeated set-up) / location (bold); solid lines "
+                  "separate locations, dotted lines set-ups; marker = mode", labelpad=6)
 
 
 def mode_legend(plt, modes):
@@ -986,7 +1030,7 @@ def mode_legend(plt, modes):
 
 def series_handle(plt, label, color, filled):
     return plt.Line2D([], [], ls="", marker="o", markersize=6,
-                      markerfacecolor=color if filled else "white", markeredgecolor=color,
+                      markerfacecolor=color if filled else "none", markeredgecolor=color,
                       markeredgewidth=1.2, label=label)
 
 
@@ -1050,7 +1094,7 @@ def figure_en(plt, np, run, path):
         for offset, (treatment, measurand, column, filled) in zip(series_offsets(len(series)),
                                                                   series):
             color = TREATMENT_COLORS[treatment]
-            label = f"E_n {run.label(treatment)}"
+            label = f"$E_n$ {run.label(treatment)}"
             count = 0
             for mode in modes:
                 idx = [i for i, m in enumerate(ms)
@@ -1059,8 +1103,10 @@ def figure_en(plt, np, run, path):
                     continue
                 values = np.array([ms[i].value(measurand, column) for i in idx])
                 shown = np.clip(values, -0.97 * top, 0.97 * top)
+                # Hollow markers have no face and the filled (uncorrected) ones are drawn
+                # on top, so no marker hides another even where values coincide.
                 ax.scatter(x[idx] + offset, shown, marker=marker_of(mode, modes), s=30,
-                           zorder=3, facecolors=color if filled else "white",
+                           zorder=4 if filled else 3, facecolors=color if filled else "none",
                            edgecolors=color, linewidths=1.2)
                 count += len(idx)
                 for i, v, s in zip(idx, values, shown):
@@ -1074,7 +1120,7 @@ def figure_en(plt, np, run, path):
                 handles.setdefault(("series", treatment),
                                    series_handle(plt, label, color, filled))
         ax.set_ylim(-top, top)
-        ax.set_ylabel("E_n")
+        ax.set_ylabel("$E_n$")
         ax.set_title(title, loc="left", fontsize=9)
         ax.grid(False, axis="x")
     label_measurement_axis(axes[-1], run, ms)
@@ -1082,13 +1128,17 @@ def figure_en(plt, np, run, path):
     first = [handles[("series", t)] for t in TREATMENTS if ("series", t) in handles]
     second = mode_legend(plt, modes)
     second.append(plt.Rectangle((0, 0), 1, 1, color="tab:green", alpha=0.15,
-                                label="|E_n| ≤ 1"))
+                                label=r"$|E_n| \leq 1$"))
+    second.append(plt.Line2D([], [], color="tab:red", lw=1.0, ls="--", label="±1"))
     if "refused" in handles:
         h = handles["refused"]
         h.set_label("correction refused (would be negative)")
         second.append(h)
     legend, ncol = two_row_legend(plt, first, second)
-    top_legend(fig, legend, ncol, "E_n per measurement (k = %g)" % run.coverage_factor)
+    top_legend(fig, legend, ncol, "$E_n$ per measurement: " + EN_DEFINITION_TEX
+               + f", k = {run.coverage_factor:g} (positive: the CMM reads low)")
+    limits = {"tick_rotations": [t.get_rotation() for t in
+                                 axes[-1].get_xticklabels(which="both") if t.get_text()]}
     texts = save(plt, fig, path)
     default_text = (f"the default treatment '{roundness_default}' (hollow orange; "
                     + BIAS_TREATMENT_DESCRIPTIONS[roundness_default] + ")")
@@ -1121,7 +1171,8 @@ def figure_en(plt, np, run, path):
         + (f" {clipped_total} value(s) beyond ±{EN_AXIS_CAP:g} are drawn at the edge with "
            "their value written beside them." if clipped_total else "")
         + f" k = {run.coverage_factor:g} ({run.coverage_factor_source}).")
-    return Figure(os.path.basename(path), "E_n per measurement", caption, texts, drawn)
+    return Figure(os.path.basename(path), "E_n per measurement", caption, texts, drawn,
+                  limits)
 
 
 def figure_errors(plt, np, run, path):
@@ -1166,8 +1217,8 @@ def figure_errors(plt, np, run, path):
                 sel = [j for j, i in enumerate(idx) if ms[i].mode == mode]
                 if sel:
                     ax.scatter(x[[idx[j] for j in sel]] + offset, errors[sel],
-                               marker=marker_of(mode, modes), s=28, zorder=3,
-                               facecolors=color if filled else "white", edgecolors=color,
+                               marker=marker_of(mode, modes), s=28, zorder=4 if filled else 3,
+                               facecolors=color if filled else "none", edgecolors=color,
                                linewidths=1.2)
             covered = int(np.sum(np.abs(errors) <= expanded)) if idx else 0
             short = run.label(treatment, measurand)
@@ -1175,10 +1226,9 @@ def figure_errors(plt, np, run, path):
             drawn[f"{measurand}: {short}"] = len(idx)
             if idx:
                 handles.setdefault(treatment, series_handle(
-                    plt, run.label(treatment) + (" ± k·u_corrected (incl. u_bias)"
-                                                 if treatment == "corrected" else
-                                                 " ± k·u_corrected_paper"
-                                                 if treatment == "paper" else " ± k·u"),
+                    plt, run.label(treatment) + f" ± U (k = {k:g})" + (
+                        ", U = k·u_corrected (incl. u_bias)" if treatment == "corrected" else
+                        ", U = k·u_corrected_paper" if treatment == "paper" else ", U = k·u"),
                     color, filled))
         ax.text(0.005, 0.97, "truth within ±U — " + "; ".join(coverage),
                 transform=ax.transAxes, va="top", ha="left", fontsize=8,
@@ -1188,7 +1238,8 @@ def figure_errors(plt, np, run, path):
         ax.set_ylabel("reported − true (µm)")
         ax.set_title(f"{measurand.capitalize()}: reported − true value (µm"
                      + ("; converted from mm" if factor != 1.0 else "")
-                     + f"), bars ±U = {k:g}·u of the treatment", loc="left", fontsize=9)
+                     + f"), bars ±U (k = {k:g}) = {k:g}·u of the treatment", loc="left",
+                     fontsize=9)
         ax.grid(False, axis="x")
     label_measurement_axis(axes[-1], run, ms)
     axes[-1].grid(False, axis="x", which="both")
@@ -1219,73 +1270,145 @@ def figure_errors(plt, np, run, path):
                   texts, drawn)
 
 
+REFERENCE_CIRCLE_NAMES = {"MZ": "minimum-zone (MZ)", "MI": "maximum-inscribed (MI)",
+                          "LS": "least-squares (LS)", "MC": "minimum-circumscribed (MC)"}
+
+
+def reference_and_filter(run):
+    """(reference circle symbol, its name, filter text) from run_info.json, each saying so
+    when run_info.json does not state it."""
+    info = run.run_info or {}
+    symbol = info.get("reference_circle")
+    if isinstance(symbol, str) and symbol in REFERENCE_CIRCLE_NAMES:
+        name = REFERENCE_CIRCLE_NAMES[symbol]
+    else:
+        symbol, name = "reference", "reference circle not stated in run_info.json"
+    if "filter_cutoff_upr" not in info:
+        filter_text = "filter not stated in run_info.json"
+    elif isinstance(info["filter_cutoff_upr"], (int, float)) \
+            and not isinstance(info["filter_cutoff_upr"], bool):
+        filter_text = f"Gaussian filter {info['filter_cutoff_upr']:g} UPR"
+    else:
+        filter_text = "unfiltered"
+    return symbol, name, filter_text
+
+
 def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
     colors = ["C0", "C3", "C2", "C1", "C4", "C5", "C6", "C7"]
-    largest = max(max(max(abs(v) for v in p.deviation_um), max(abs(v) for v in p.filtered_um))
-                  for _, p in profiles)
-    scale_um = nice_ceil(largest) if largest > 0 else 1.0
-    gain = POLAR_SPAN / scale_um          # radius units per um; base radius 1
+    symbol, circle_name, filter_text = reference_and_filter(run)
+    # The unrolled panels show every point; the polar plot's radial axis (µm) follows the
+    # filtered profiles, whose zone RONt is evaluated on: 'nice' rings from just below the
+    # smallest to just above the largest filtered deviation (and 0), so that a 1 µm form is
+    # not flattened by the noise of the unfiltered points, which are drawn only within it.
+    lowest = min(min(min(p.deviation_um), min(p.filtered_um)) for _, p in profiles)
+    highest = max(max(max(p.deviation_um), max(p.filtered_um)) for _, p in profiles)
+    lowest, highest = min(lowest, 0.0), max(highest, 0.0)
+    span = highest - lowest if highest > lowest else 1.0
+    filtered_low = min(0.0, min(min(p.filtered_um) for _, p in profiles))
+    filtered_high = max(0.0, max(max(p.filtered_um) for _, p in profiles))
+    margin = 0.1 * (filtered_high - filtered_low)
+    step = nice_ceil((filtered_high - filtered_low) / 4.0) if filtered_high > filtered_low \
+        else 0.1
+    r_low = step * math.floor((filtered_low - margin) / step + 1e-9)
+    r_high = step * math.ceil((filtered_high + margin) / step - 1e-9)
+    r_span = r_high - r_low
 
     n = len(profiles)
-    fig = plt.figure(figsize=(13.0, max(5.6, 1.7 * n + 1.6)))
-    grid = fig.add_gridspec(n, 2, width_ratios=(1.0, 1.35), hspace=0.15, wspace=0.12)
+    fig = plt.figure(figsize=(13.5, max(6.4, 1.9 * n + 2.4)))
+    grid = fig.add_gridspec(n, 2, width_ratios=(1.0, 1.3), hspace=0.18, wspace=0.2)
     polar = fig.add_subplot(grid[:, 0], projection="polar")
-    theta_base = np.linspace(0.0, 2.0 * np.pi, 361)
-    polar.plot(theta_base, np.ones_like(theta_base), color="0.25", lw=0.8, ls="--")
+    polar.set_axisbelow(False)           # rings and their labels above the data
+    theta = np.linspace(0.0, 2.0 * np.pi, 721)
     unrolled = []
+    legend = []
+    ronts = {}
     for i, ((m, p), color) in enumerate(zip(profiles, colors)):
         label = {"locations": f"location {m.location}",
                  "orientations": f"orientation {m.orientation_deg:g}°"}[kind]
         angle = np.radians(np.array(p.angle_deg))
         deviation = np.array(p.deviation_um)
         filtered = np.array(p.filtered_um)
-        polar.scatter(angle, 1.0 + gain * deviation, s=3, color=color, alpha=0.25, lw=0)
+        inner, outer = float(filtered.min()), float(filtered.max())
+        ront = outer - inner
+        ront_text = format_with_uncertainty(ront, m.value("roundness", "u"))
+        ronts[m.id] = ront
+        inside = (deviation >= r_low) & (deviation <= r_high)
+        polar.scatter(angle[inside], deviation[inside], s=3, color=color, alpha=0.25, lw=0,
+                      zorder=1)
         closed_angle = np.append(angle, angle[0] + 2.0 * np.pi)
         closed = np.append(filtered, filtered[0])
-        polar.plot(closed_angle, 1.0 + gain * closed, color=color, lw=1.5,
-                   label=f"{label} ({m.id})")
+        legend.append(polar.plot(closed_angle, closed, color=color, lw=1.5, zorder=2,
+                                 label=f"{label} ({m.id}), RONt = {ront_text} µm")[0])
+        for r in (inner, outer):       # the zone of the reference circle: RONt wide
+            polar.plot(theta, np.full_like(theta, r), color=color, lw=1.0, ls=":", zorder=3)
         ax = fig.add_subplot(grid[i, 1], sharex=unrolled[0] if unrolled else None,
                              sharey=unrolled[0] if unrolled else None)
         unrolled.append(ax)
-        ax.axhline(0.0, color="0.3", lw=0.8)
+        ax.axhline(0.0, color="0.2", lw=1.0, ls="--", zorder=4)
+        for r in (inner, outer):
+            ax.axhline(r, color=color, lw=1.0, ls=":", zorder=3)
         ax.scatter(p.angle_deg, deviation, s=5, color=color, alpha=0.3, lw=0,
-                   label="unfiltered")
-        ax.plot(p.angle_deg, filtered, color=color, lw=1.4, label="filtered")
-        ax.text(0.01, 0.95, f"{label}: {m.id}", transform=ax.transAxes, va="top",
-                fontsize=8, bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
-        ax.text(0.99, 0.95, f"filtered peak-to-valley {np.ptp(filtered):.3f} µm",
+                   label="unfiltered", zorder=1)
+        ax.plot(p.angle_deg, filtered, color=color, lw=1.4, label=f"filtered ({filter_text})",
+                zorder=2)
+        ax.text(0.01, 0.96, f"{label}: {m.id}", transform=ax.transAxes, va="top",
+                fontsize=8, bbox={"facecolor": "white", "alpha": 0.85, "lw": 0}, zorder=5)
+        ax.text(0.99, 0.96, f"RONt ({symbol}, {filter_text}) = {ront_text} µm",
                 transform=ax.transAxes, va="top", ha="right", fontsize=8,
-                bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
+                bbox={"facecolor": "white", "alpha": 0.85, "lw": 0}, zorder=5)
         ax.set_ylabel("deviation (µm)")
         if i < n - 1:
             ax.tick_params(labelbottom=False)
     unrolled[0].set_xlim(0.0, 360.0)
     unrolled[0].set_xticks(range(0, 361, 45))
-    unrolled[0].set_ylim(-1.35 * largest, 1.35 * largest)
+    # Room above the data for the two labels of each panel.
+    unrolled[0].set_ylim(lowest - 0.08 * span, highest + 0.35 * span)
     unrolled[-1].set_xlabel("angle about the reference-circle centre (°)")
-    unrolled[0].legend(loc="lower right", ncol=2, fontsize=7, markerscale=2)
-    polar.set_ylim(0.0, 1.0 + 1.3 * POLAR_SPAN)
-    polar.set_yticks([1.0 - POLAR_SPAN, 1.0, 1.0 + POLAR_SPAN])
-    polar.set_yticklabels([f"−{scale_um:g} µm", "0", f"+{scale_um:g} µm"], fontsize=7)
-    polar.set_rlabel_position(112.5)
-    for label in polar.get_yticklabels():
-        label.set_bbox({"facecolor": "white", "alpha": 0.8, "lw": 0, "pad": 1})
+    unrolled[-1].legend(loc="lower right", ncol=2, fontsize=7, markerscale=2,
+                        framealpha=0.85)
+
+    # The deviation annulus occupies the outer half of the polar plot's radius; the hole
+    # keeps the base circle (deviation 0) well away from the centre.
+    polar.set_rorigin(r_low - 1.2 * r_span)
+    polar.set_ylim(r_low, r_high)
+    rings = [r_low + j * step for j in range(int(round(r_span / step)) + 1)]
+    polar.set_yticks(rings)
+    polar.set_yticklabels(["0" if abs(r) < 1e-9 * step else f"{r:+.10g}".replace("-", "−")
+                           for r in rings],
+                          fontsize=8)
+    polar.set_rlabel_position(100.0)
+    for tick in polar.get_yticklabels():
+        tick.set_bbox({"facecolor": "white", "alpha": 0.85, "lw": 0, "pad": 1})
+    base = polar.plot(theta, np.zeros_like(theta), color="black", lw=1.3, ls="--", zorder=4,
+                      label=f"base circle: 0 = the {symbol} reference circle")[0]
     polar.set_thetagrids(range(0, 360, 45))
-    polar.set_title(f"polar: deviation magnified, ±{scale_um:g} µm = ±{POLAR_SPAN:.0%} of "
-                    "the base circle", fontsize=9)
-    polar.legend(loc="upper center", bbox_to_anchor=(0.5, -0.06), fontsize=7, ncol=1,
-                 frameon=False)
-    fig.suptitle(title, fontweight="bold")
+    polar.set_title(f"deviation about the {symbol} circle (µm): rings every {step:g} µm,\n"
+                    "base circle dashed, zone dotted; radius not to scale", fontsize=9)
+    zone = plt.Line2D([], [], color="0.3", lw=1.0, ls=":",
+                      label=f"{symbol} zone: the two circles RONt apart enclosing the "
+                            "filtered profile")
+    polar.legend(handles=legend + [base, zone], loc="upper center",
+                 bbox_to_anchor=(0.5, -0.06), fontsize=7, ncol=1, frameon=False)
+    fig.suptitle(f"{title} — RONt about the {circle_name} circle, {filter_text}",
+                 fontweight="bold")
+    limits = {"polar": tuple(polar.get_ylim()), "unrolled": tuple(unrolled[0].get_ylim()),
+              "filtered": (filtered_low, filtered_high), "all": (lowest, highest)}
     texts = save(plt, fig, path)
     caption = (
-        "Radial deviations of the corrected measured profile about the reference circle, "
+        "Radial deviations of the corrected measured profile about the run's reference "
+        f"circle ({circle_name}; {filter_text}), "
         + ("at two locations (same orientation, height and mode)" if kind == "locations"
            else "at one location, every orientation")
-        + ". Left: polar plot, the dashed base circle is zero deviation and the deviation is "
-        f"magnified so that ±{scale_um:g} µm spans ±{POLAR_SPAN:.0%} of the base radius "
-        "(the radius itself is not to scale); right: the same profiles unrolled, angle "
-        "against deviation in µm. Lines are the filtered deviations, faint points the "
-        "unfiltered ones. "
+        + ". Left: polar plot with the radial axis in µm, scaled to the filtered profiles "
+        f"(rings every {step:g} µm from {r_low:+.10g} to {r_high:+.10g} µm; unfiltered points "
+        "outside that range are left out here; the radius itself is not to scale): the "
+        "black dashed base circle is zero deviation, i.e. the reference circle; "
+        "the dotted circles of each profile's colour are its zone — the two circles "
+        "concentric with the reference circle that enclose the filtered profile, RONt "
+        f"apart (for MZ the minimum zone; for MI the inner one is the reference circle). "
+        "Right: the same profiles unrolled, angle against deviation in µm, with the zone "
+        "lines. Lines are the filtered deviations, faint points the unfiltered ones; RONt is "
+        "written with the decimal places of the measurement's u (two significant digits). "
         + ("A form that stays put between the locations belongs to the ring; one that "
            "changes (e.g. an added 2-lobe oval) comes from the machine's error map at that "
            "location. " if kind == "locations" else
@@ -1297,7 +1420,7 @@ def figure_residuals(plt, np, run, profiles, path, title, selection_note, kind):
               f"'{run.run_info['residual_angles']}'. "
               if isinstance((run.run_info or {}).get("residual_angles"), str) else ""))
         + selection_note)
-    return Figure(os.path.basename(path), title, caption, texts)
+    return Figure(os.path.basename(path), title, caption, texts, limits=limits)
 
 
 def figure_histogram(plt, np, run, m, samples, path):
@@ -1305,9 +1428,11 @@ def figure_histogram(plt, np, run, m, samples, path):
     p = run.coverage_probability
     interval_label = ("coverage interval" if p is None else
                       f"{100 * p:g} % coverage interval")
-    fig, axes = plt.subplots(1, 2, figsize=(13.0, 5.0))
+    fig, axes = plt.subplots(1, 2, figsize=(14.0, 5.8))
     warnings = []
     handles = {}
+    interval_texts = []    # the ladder's intervals as written numbers, for the tests
+    limits = {}
     for ax, measurand in zip(axes, MEASURANDS):
         row = m.rows.get(measurand)
         if row is None:
@@ -1334,45 +1459,78 @@ def figure_histogram(plt, np, run, m, samples, path):
             return (value - origin) * factor
 
         bins = int(min(80, max(10, round(math.sqrt(len(data))))))
-        ax.hist(data, bins=bins, color="0.75", edgecolor="0.55", lw=0.4, zorder=2)
+        counts, _, _ = ax.hist(data, bins=bins, color="0.78", edgecolor="0.6", lw=0.4,
+                               zorder=2)
+        # Headroom above the histogram for the ladder of intervals.
+        ax.set_ylim(0.0, 1.55 * max(counts))
+        default_is_paper = row.treatment == "paper"
+        # One decimal place for every number of the panel: two significant digits of the
+        # smallest standard uncertainty the row reports (GUM 7.2.6).
+        decimals_u = min(x for x in (v["u"], v["u_corrected"], v["u_corrected_paper"], 1e300)
+                         if x > 0) * factor
+
+        def number(value, *, signed=False):
+            return format_with_uncertainty(None if value is None else value * factor,
+                                           decimals_u, signed=signed)
+
+        def clamp(low):
+            return low if measurand == "diameter" else max(0.0, low)
         if v["reference"] is not None:
             ref = shown(v["reference"])
             band = k * v["u_reference"] * factor
             handles.setdefault("refband", ax.axvspan(
-                ref - band, ref + band, color="tab:red", alpha=0.12, lw=0, zorder=1,
+                ref - band, ref + band, color="tab:red", alpha=0.10, lw=0, zorder=1,
                 label=f"reference ± U_ref (k = {k:g})"))
-        # The default treatment's corrected value with ±k·u_corrected (u_corrected includes
-        # u_bias for the shrinkage treatment).
-        # A roundness is not negative: its band stops at 0.
-        corrected = shown(v["corrected"])
-        u_band = k * v["u_corrected"] * factor
-        low = corrected - u_band if measurand == "diameter" else max(0.0, corrected - u_band)
-        handles.setdefault("corrband", ax.axvspan(
-            low, corrected + u_band, facecolor="none", hatch="///",
-            edgecolor=TREATMENT_COLORS["corrected"], alpha=0.4, lw=0, zorder=1,
-            label="default ± k·u_corrected (incl. u_bias)"))
-        default_is_paper = row.treatment == "paper"
+        # Vertical lines: the estimate thin black on top of the Monte Carlo mean, drawn wide
+        # and translucent, so that each stays visible when they (nearly) coincide.
         lines = [
-            ("reference", v["reference"], "tab:red", "-", 1.8),
-            ("estimate from data", v["estimate"], "black", "-", 1.8),
-            ("Monte Carlo mean (seed-study run)", v["mc_mean"], "tab:blue", "--", 1.6),
-            (interval_label, v["interval_low"], "tab:blue", ":", 1.6),
-            (None, v["interval_high"], "tab:blue", ":", 1.6),
-            ("corrected, default treatment", v["corrected"], TREATMENT_COLORS["corrected"],
-             "-", 1.8),
+            ("reference", v["reference"], "tab:red", "-", 1.6, 1.0, 3),
+            ("estimate from data", v["estimate"], "black", "-", 1.2, 1.0, 6),
+            ("Monte Carlo mean (seed-study run)", v["mc_mean"], "tab:blue", (0, (4, 2)), 3.2,
+             0.55, 5),
+            (interval_label, v["interval_low"], "tab:blue", ":", 1.4, 1.0, 4),
+            (None, v["interval_high"], "tab:blue", ":", 1.4, 1.0, 4),
         ]
-        if not default_is_paper:
-            lines.append(("(a) seed study's corrected", v["corrected_paper"],
-                          TREATMENT_COLORS["paper"], (0, (5, 2)), 1.8))
         if v["true_value"] is not None:
-            lines.append(("true value", v["true_value"], "tab:purple", "-.", 1.6))
-        for label, value, color, style, width in lines:
+            lines.append(("true value", v["true_value"], "tab:purple", "-.", 1.5, 1.0, 4))
+        for label, value, color, style, width, alpha, z in lines:
             if value is None:
                 continue
-            h = ax.axvline(shown(value), color=color, ls=style, lw=width, zorder=3)
+            h = ax.axvline(shown(value), color=color, ls=style, lw=width, alpha=alpha,
+                           zorder=z)
             if label:
                 h.set_label(label)
                 handles.setdefault(label, h)
+        # The ladder of intervals above the histogram (axes-fraction heights): each
+        # treatment's reported value with its expanded uncertainty U = k·u (the corrected
+        # intervals), and the reference's.
+        ladder = [("uncorrected ± U", v["estimate"], v["estimate"] - k * v["u"],
+                   v["estimate"] + k * v["u"], TREATMENT_COLORS["uncorrected"], "o")]
+        ladder.append(("default corrected ± U_c (incl. u_bias)", v["corrected"],
+                       v["corrected"] - k * v["u_corrected"],
+                       v["corrected"] + k * v["u_corrected"], TREATMENT_COLORS["corrected"],
+                       "D"))
+        if not default_is_paper:
+            ladder.append(("(a) corrected ± U_c", v["corrected_paper"],
+                           v["corrected_paper"] - k * v["u_corrected_paper"],
+                           v["corrected_paper"] + k * v["u_corrected_paper"],
+                           TREATMENT_COLORS["paper"], "s"))
+        if v["reference"] is not None:
+            ladder.append(("reference ± U_ref", v["reference"],
+                           v["reference"] - k * v["u_reference"],
+                           v["reference"] + k * v["u_reference"], "tab:red", "o"))
+        transform = ax.get_xaxis_transform()
+        for j, (label, centre, low, high, color, marker) in enumerate(ladder):
+            y = 0.95 - 0.045 * j
+            h = ax.plot([shown(clamp(low)), shown(high)], [y, y], color=color, lw=2.4,
+                        solid_capstyle="butt", transform=transform, zorder=7,
+                        label=label)[0]
+            ax.plot([shown(centre)], [y], marker=marker, color=color, markersize=6,
+                    markerfacecolor="white",
+                    markeredgewidth=1.5, transform=transform, zorder=8)
+            handles.setdefault(label, h)
+            interval_texts.append(f"{measurand}: {label}: [{number(clamp(low))}, "
+                                  f"{number(high)}]")
         # Consistency of the samples file with results.csv: their mean should agree with
         # mc_mean within a few standard errors u/sqrt(M) (5 here: a chance of 6e-7).
         mean = float(np.mean(samples[measurand]))
@@ -1382,23 +1540,19 @@ def figure_histogram(plt, np, run, m, samples, path):
                             f"results.csv mc_mean ({v['mc_mean']:.7g}) by more than 5 "
                             "standard errors")
 
-        def number(value, spec):
-            return "n/a" if value is None else format(value * factor, spec)
-
         def en(column):
             return "n/a" if v[column] is None else f"{v[column]:.2f}"
-        u_bias = v["u_bias"] * factor
-        title = [f"{measurand}, uncorrected: u = {number(v['u'], '.3g')} µm, "
-                 f"E_n = {en('En')}",
+        title = [f"{measurand}, uncorrected: u = {number(v['u'])} µm, U (k = {k:g}) = "
+                 f"{number(k * v['u'])} µm, $E_n$ = {en('En')}",
                  f"default ({row.treatment}" + (" = (a)" if default_is_paper else "")
-                 + f"): b = {number(v['bias'], '+.3g')} µm, "
-                 f"u_corrected = {number(v['u_corrected'], '.3g')} µm"
-                 + (f" (incl. u_bias = {u_bias:.3g})" if u_bias > 0 else "")
-                 + f", E_n = {en('En_corrected')}"]
+                 + f"): b = {number(v['bias'], signed=True)} µm, "
+                 f"u_c = {number(v['u_corrected'])} µm"
+                 + (f" (incl. u_bias = {number(v['u_bias'])})" if v["u_bias"] > 0 else "")
+                 + f", $E_n$ = {en('En_corrected')}"]
         if not default_is_paper:
-            title.append(f"(a) seed study: b = {number(v['bias_paper'], '+.3g')} µm, "
-                         f"u_corrected = {number(v['u_corrected_paper'], '.3g')} µm, "
-                         f"E_n = {en('En_paper')}")
+            title.append(f"(a) seed study: b = {number(v['bias_paper'], signed=True)} µm, "
+                         f"u_c = {number(v['u_corrected_paper'])} µm, "
+                         f"$E_n$ = {en('En_paper')}")
         ax.set_title("\n".join(title), fontsize=8.5)
         flags = []
         if not row.correction_applied:
@@ -1408,17 +1562,20 @@ def figure_histogram(plt, np, run, m, samples, path):
         if not default_is_paper and not row.paper_applied:
             flags.append("(a) correction refused\n(would be negative)")
         if flags:
-            ax.text(0.99, 0.97, "\n".join(flags), transform=ax.transAxes, ha="right",
+            ax.text(0.99, 0.70, "\n".join(flags), transform=ax.transAxes, ha="right",
                     va="top", fontsize=8, color="0.25",
                     bbox={"facecolor": "white", "alpha": 0.85, "lw": 0})
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"trials (of M = {len(data)})")
+        limits[measurand] = (tuple(ax.get_xlim()), (float(data.min()), float(data.max())))
     order = ["reference", "refband", "estimate from data", "Monte Carlo mean (seed-study run)",
-             interval_label, "corrected, default treatment", "corrband",
-             "(a) seed study's corrected", "true value"]
+             interval_label, "true value", "uncorrected ± U",
+             "default corrected ± U_c (incl. u_bias)", "(a) corrected ± U_c",
+             "reference ± U_ref"]
     fig.legend(handles=[handles[key] for key in order if key in handles],
                loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=4, frameon=False)
-    fig.suptitle(f"Monte Carlo samples of {describe(m)}", fontweight="bold")
+    fig.suptitle(f"Monte Carlo samples of {describe(m)}; U = k·u, k = {k:g}",
+                 fontweight="bold")
     fig.tight_layout()
     texts = save(plt, fig, path)
     default = run.default_treatment("roundness")
@@ -1426,28 +1583,32 @@ def figure_histogram(plt, np, run, m, samples, path):
         f"Histograms of the M = {len(samples['diameter'])} Monte Carlo trials of "
         f"{describe(m)} (the seed study's virtual experiment on the measured profile): "
         "diameter (shown in µm relative to the reference diameter) and roundness. Vertical "
-        "lines: the estimate from the measured data (black), the Monte Carlo mean (blue "
-        "dashed; its distance from the estimate is the seed study's bias b of treatment "
-        f"(a)), the ends of the {interval_label} (blue dotted"
+        "lines: the estimate from the measured data (thin black), the Monte Carlo mean "
+        "(wide translucent blue dashes, so that the estimate stays visible on top of it; "
+        "its distance from the estimate is the seed study's bias b of treatment (a)), the "
+        f"ends of the {interval_label} (blue dotted"
         + ("" if p is not None else "; its coverage probability is not stated in "
-           "run_info.json") + "), the value corrected by the default treatment (orange, "
-        "with the hatched band ± k·u_corrected, stopped at 0 for the roundness; roundness: "
-        f"'{default}'"
+           "run_info.json") + "), the reference value (red) with its expanded uncertainty "
+        f"U_ref = {k:g}·u_ref (red band)"
+        + (" and the true value of the simulation (purple dash-dot)"
+           if any(m.value(x, "true_value") is not None for x in MEASURANDS) else "")
+        + ". Above the histogram, one horizontal bar per reported result: the uncorrected "
+        "estimate ± U (blue), the value corrected by the default treatment ± U_c (orange; "
+        f"roundness: '{default}'"
         + (", whose bias comes from a second Monte Carlo run at a surrogate of the true "
            "profile, not from these samples, and whose u_corrected includes u_bias, the "
            "standard uncertainty of that bias estimate" if default == "shrinkage" else "")
         + ")"
-        + (", the value corrected as the seed study does (a) = estimate − b (brown dashed; "
-           "diameter: the same as the default)" if default != "paper" else "")
-        + ", the reference value (red) with its "
-        f"expanded uncertainty U_ref = {k:g}·u_ref (red band)"
-        + (" and the true value of the simulation (purple dash-dot)"
-           if any(m.value(x, "true_value") is not None for x in MEASURANDS) else "")
-        + ". The panel titles give u, the bias b, u_corrected and E_n of each treatment. A "
-        "roundness histogram lying to the right of the estimate shows the noise bias: "
-        "noise tends to increase a peak-to-valley value, in the simulation as on the real "
-        "machine." + "".join(f" Warning: {w}." for w in warnings))
-    return Figure(os.path.basename(path), f"Monte Carlo histogram, {m.id}", caption, texts)
+        + (", the value corrected as the seed study does (a) = estimate − b ± U_c (brown)"
+           if default != "paper" else "")
+        + " and the reference ± U_ref (red); roundness intervals stop at 0. The panel titles give u, U, the bias b, u_c (u_corrected) and "
+        "E_n of each treatment, every number of a panel rounded to the decimal place of "
+        "two significant digits of its smallest u (GUM 7.2.6). A roundness histogram lying "
+        "to the right of the estimate shows the noise bias: noise tends to increase a "
+        "peak-to-valley value, in the simulation as on the real machine."
+        + "".join(f" Warning: {w}." for w in warnings))
+    return Figure(os.path.basename(path), f"Monte Carlo histogram, {m.id}", caption,
+                  texts + interval_texts, limits=limits)
 
 
 def treatment_tick(run, treatment):
@@ -1472,10 +1633,10 @@ def figure_treatments(plt, np, run, path):
     width = 0.8 / max(1, len(measurands))
     # Not the treatment colours of the other figures: here colour is the measurand.
     colors = {"diameter": "C9", "roundness": "C8"}
-    panels = [("mean E_n", lambda r: r.mean, EXPECTED_MEAN_EN, "honest 0"),
-              ("RMS of E_n", lambda r: r.rms, run.expected_rms,
+    panels = [("mean $E_n$", lambda r: r.mean, EXPECTED_MEAN_EN, "honest 0"),
+              ("RMS of $E_n$", lambda r: r.rms, run.expected_rms,
                f"honest {run.expected_rms:.3g}"),
-              ("share |E_n| ≤ 1 (%)", lambda r: None if r.share is None else 100 * r.share,
+              (r"share $|E_n| \leq 1$ (%)", lambda r: None if r.share is None else 100 * r.share,
                100 * run.expected_share, f"honest {100 * run.expected_share:.1f} %")]
     for ax, (title, get, expected, expected_label) in zip(axes[0], panels):
         for j, measurand in enumerate(measurands):
@@ -1498,7 +1659,7 @@ def figure_treatments(plt, np, run, path):
                     xycoords=("axes fraction", "data"), xytext=(3, 0),
                     textcoords="offset points", ha="left", va="center", color="tab:red",
                     fontsize=7)
-        ax.set_xticks(x, ticks, fontsize=7)
+        ax.set_xticks(x, ticks, fontsize=8)
         ax.set_title(title)
         if "%" in title:
             ax.set_ylim(0, 110)
@@ -1518,7 +1679,7 @@ def figure_treatments(plt, np, run, path):
                 ax.bar(positions, [0.0 if v is None else v * factor for v in values], 0.37,
                        color=color, label=label)
             ax.axhline(0.0, color="0.3", lw=0.8)
-            ax.set_xticks(x, ticks, fontsize=7)
+            ax.set_xticks(x, ticks, fontsize=8)
             ax.set_ylabel(f"{unit_shown}")
             ax.set_title(f"{measurand}: reported value − true value ({unit_shown})")
         for ax in axes[1][len(measurands):]:
@@ -1532,7 +1693,8 @@ def figure_treatments(plt, np, run, path):
               for m in measurands]
     legend.append(plt.Line2D([], [], color="tab:red", ls="--",
                              label="expected with honest uncertainties"))
-    top_legend(fig, legend, len(legend), "Bias treatments over the whole run (treatments.csv)")
+    top_legend(fig, legend, len(legend), "Bias treatments over the whole run (treatments.csv); "
+               + EN_DEFINITION_TEX + f", k = {run.coverage_factor:g}")
     texts = save(plt, fig, path)
     default = run.default_treatment("roundness")
     caption = (
@@ -1576,77 +1738,92 @@ def level_order(run, factor, levels):
 
 
 def figure_factors(plt, np, run, path):
+    """A dot plot per factor, measurand and statistic: the mean of E_n and the RMS of E_n at
+    each level, one dot per treatment side by side (no line joins them: they are two
+    statistics, not an interval)."""
     factors = [f for f in FACTORS[1:] if any(r.factor == f for r in run.summary)]
     measurands = [x for x in MEASURANDS if any(r.measurand == x for r in run.summary)]
     treatments = sorted({r.treatment for r in run.summary}, key=lambda t: rank(t, TREATMENTS))
     colors = TREATMENT_COLORS
     lookup = {(r.factor, r.level, r.measurand, r.treatment): r for r in run.summary}
-    fig, axes = plt.subplots(len(factors), len(measurands), squeeze=False,
-                             figsize=(13.0, 2.9 * len(factors) + 0.8))
+    columns = [(measurand, stat) for measurand in measurands for stat in ("mean", "rms")]
+    fig, axes = plt.subplots(len(factors), len(columns), squeeze=False,
+                             figsize=(4.2 * len(columns), 2.9 * len(factors) + 1.2))
     offsets = np.linspace(-0.3, 0.3, len(treatments)) if len(treatments) > 1 else [0.0]
-    lowest, highest = -1.0, 1.0
+    expected_se = run.expected_rms       # standard deviation of one E_n when honest
+    ranges = {"mean": [-1.0, 1.0], "rms": [0.0, 1.0]}
     for row, factor in enumerate(factors):
         levels = level_order(run, factor, {r.level for r in run.summary if r.factor == factor})
         x = np.arange(len(levels))
-        for col, measurand in enumerate(measurands):
+        for col, (measurand, stat) in enumerate(columns):
             ax = axes[row][col]
-            ax.axhspan(-1.0, 1.0, color="tab:green", alpha=0.06, lw=0)
-            ax.axhline(0.0, color="0.3", lw=0.8)
-            ax.axhline(run.expected_rms, color="tab:red", ls="--", lw=1.0)
-            for offset, treatment in zip(offsets, treatments):
-                color = colors.get(treatment, "C5")
-                for i, level in enumerate(levels):     # a thin line pairs mean and RMS
-                    r = lookup.get((factor, level, measurand, treatment))
-                    if r is not None and r.mean is not None and r.rms is not None:
-                        ax.plot([i + offset] * 2, [r.mean, r.rms], color=color, lw=0.8,
-                                alpha=0.6, zorder=2)
-                for stat, marker, filled in (("mean", "o", True), ("rms", "s", False)):
-                    xs, ys = [], []
-                    for i, level in enumerate(levels):
-                        r = lookup.get((factor, level, measurand, treatment))
-                        value = None if r is None else getattr(r, stat)
-                        if value is not None:
-                            xs.append(i + offset)
-                            ys.append(value)
-                    if xs:
-                        ax.scatter(xs, ys, marker=marker, s=28, zorder=3,
-                                   facecolors=color if filled else "white",
-                                   edgecolors=color, linewidths=1.2)
-                        lowest, highest = min(lowest, min(ys)), max(highest, max(ys))
-            labels = []
+            counts = []
             for level in levels:
                 r = lookup.get((factor, level, measurand, "uncorrected")) or next(
                     (lookup[(factor, level, measurand, t)] for t in treatments
                      if (factor, level, measurand, t) in lookup), None)
-                labels.append(level.replace("_", "-") + ("" if r is None else f"\nn={r.n}"))
+                counts.append(None if r is None else r.n)
+            if stat == "mean":
+                # Where an honest mean of n values falls 95 % of the time: ±2·(1/k)/√n.
+                for i, n in enumerate(counts):
+                    if n:
+                        half = 2.0 * expected_se / math.sqrt(n)
+                        ax.add_patch(plt.Rectangle((i - 0.45, -half), 0.9, 2 * half,
+                                                   color="tab:green", alpha=0.12, lw=0))
+                ax.axhline(EXPECTED_MEAN_EN, color="tab:red", ls="--", lw=1.0)
+            else:
+                ax.axhline(run.expected_rms, color="tab:red", ls="--", lw=1.0)
+            for offset, treatment in zip(offsets, treatments):
+                xs, ys = [], []
+                for i, level in enumerate(levels):
+                    r = lookup.get((factor, level, measurand, treatment))
+                    value = None if r is None else getattr(r, stat)
+                    if value is not None:
+                        xs.append(i + offset)
+                        ys.append(value)
+                if xs:
+                    ax.scatter(xs, ys, marker="o", s=30, zorder=3,
+                               color=colors.get(treatment, "C5"), edgecolors="white",
+                               linewidths=0.5)
+                    ranges[stat][0] = min(ranges[stat][0], min(ys))
+                    ranges[stat][1] = max(ranges[stat][1], max(ys))
+            labels = [level.replace("_", "-") + ("" if n is None else f"\nn={n}")
+                      for level, n in zip(levels, counts)]
             ax.set_xticks(x, labels, fontsize=7 if len(levels) > 8 else 8)
             ax.set_xlim(-0.6, len(levels) - 0.4)
             ax.grid(False, axis="x")
-            ax.set_title(f"{measurand} by {factor.replace('_deg', ' (°)')}", loc="left")
-            ax.set_ylabel("E_n")
-    for ax in axes.flat:
-        ax.set_ylim(min(lowest * 1.1, -1.1), max(highest * 1.1, 1.1))
+            for i in range(1, len(levels)):
+                ax.axvline(i - 0.5, color="0.85", lw=0.6)
+            ax.set_title(f"{measurand}: {'mean' if stat == 'mean' else 'RMS'} of $E_n$ by "
+                         f"{factor.replace('_deg', ' (°)')}", loc="left", fontsize=9)
+            ax.set_ylabel("mean $E_n$" if stat == "mean" else "RMS of $E_n$")
+    for (measurand, stat), column in zip(columns, axes.T):
+        low, high = ranges[stat]
+        for ax in column:
+            if stat == "mean":
+                ax.set_ylim(min(low * 1.1, -1.1), max(high * 1.1, 1.1))
+            else:
+                ax.set_ylim(0.0, max(high * 1.1, 1.1))
     legend, ncol = two_row_legend(
-        plt, [plt.Line2D([], [], ls="", marker="s", markersize=7, color=colors.get(t, "C5"),
+        plt, [plt.Line2D([], [], ls="", marker="o", markersize=7, color=colors.get(t, "C5"),
                          label=run.label(t)) for t in treatments],
-        [plt.Line2D([], [], ls="", marker="o", color="0.2", markersize=6,
-                    label="mean E_n (filled)"),
-         plt.Line2D([], [], ls="", marker="s", markerfacecolor="white",
-                    markeredgecolor="0.2", markersize=6, label="RMS E_n (hollow)"),
-         plt.Line2D([], [], color="tab:red", ls="--",
-                    label=f"honest RMS {run.expected_rms:.3g}")])
-    top_legend(fig, legend, ncol, "Mean and RMS of E_n by factor level (summary.csv)")
+        [plt.Line2D([], [], color="tab:red", ls="--",
+                    label=f"honest: mean 0, RMS {run.expected_rms:.3g} (1/k)"),
+         plt.Rectangle((0, 0), 1, 1, color="tab:green", alpha=0.2,
+                       label="honest mean of n values: 95 % within ±2·(1/k)/√n")])
+    top_legend(fig, legend, ncol, "Mean and RMS of $E_n$ by factor level (summary.csv); "
+               + EN_DEFINITION_TEX)
     texts = save(plt, fig, path)
     caption = (
-        "Mean (filled circles) and RMS (hollow squares) of E_n for each level of each factor "
-        "of the run — location, orientation, height, mode — per measurand, one colour per "
-        "bias treatment (" + ", ".join(run.label(t) for t in treatments) + "; 'corrected' "
-        "is the run's default treatment, the seed study's (a) is drawn beside it); n under "
-        "each level is the number of measurements. With honest "
-        f"uncertainties the mean is near 0 and the RMS near {run.expected_rms:.3g} (red dashed "
-        "line; 1/k) at every level, within the scatter of n values (the standard error of a "
-        f"mean of n E_n values is about {run.expected_rms:.3g}/√n). A level whose mean or RMS "
-        "stands out points at an effect the uncertainty budget misses there, e.g. a "
+        "Dot plots of the mean and of the RMS of E_n (" + EN_DEFINITION + ", k = "
+        f"{run.coverage_factor:g}) for each level of each factor of the run — location, "
+        "orientation, height, mode — per measurand, one colour per bias treatment ("
+        + ", ".join(run.label(t) for t in treatments) + "; 'corrected' is the run's default "
+        "treatment, the seed study's (a) is drawn beside it); n under each level is the "
+        "number of measurements. With honest uncertainties the mean is near 0, within the "
+        "green band ±2·(1/k)/√n where 95 % of honest means of n values fall, and the RMS "
+        f"near {run.expected_rms:.3g} (red dashed lines). A level whose mean or RMS stands "
+        "out points at an effect the uncertainty budget misses there, e.g. a "
         "location-dependent machine error.")
     return Figure(os.path.basename(path), "E_n by factor level", caption, texts)
 
@@ -1750,15 +1927,42 @@ def flatten(prefix, value, out):
                     json.dumps(value, ensure_ascii=False)))
 
 
-def number_text(value, column, unit):
+def number_text(value, column, unit, decimals=None):
+    """A results.csv number as the report prints it: E_n and zeta to 0.01; values and
+    uncertainties to `decimals` places (the row's GUM rounding, row_decimals) or, without
+    one, mm to 1 nm and um to 0.1 nm."""
     if value is None:
         return ""
     if column in EN_COLUMNS or column.startswith("zeta"):
         return f"{value:.2f}"
     if column == "orientation_deg":
         return f"{value:g}"
-    # mm to 1 nm, um to 0.1 nm: below any uncertainty in this field.
-    return f"{value:.6f}" if unit == "mm" else f"{value:.4f}"
+    if decimals is None:
+        decimals = 6 if unit == "mm" else 4
+    text = f"{value:.{decimals}f}"
+    return text.lstrip("-") if float(text) == 0.0 else text
+
+
+# Standard uncertainties whose smallest sets the decimal place of a row of the results table.
+ROUNDING_UNCERTAINTIES = ("u", "u_reference", "u_corrected", "u_corrected_paper")
+
+
+def row_decimals(row):
+    """Decimal places of every value of a results.csv row: two significant digits of the
+    smallest standard uncertainty the row reports (GUM 7.2.6), so a value, its u and U are
+    written to the same place; at least 1 nm (mm) or 0.1 nm (um) when no u is positive."""
+    positive = [row.values[c] for c in ROUNDING_UNCERTAINTIES
+                if row.values.get(c) is not None and row.values[c] > 0]
+    if not positive:
+        return None
+    return gum_decimals(min(positive))
+
+
+# Expanded-uncertainty columns of the per-measurement table (not in results.csv): name ->
+# the standard uncertainty it is k times, and the column it follows.
+def expanded_columns(k):
+    return {f"U (k = {k:g})": "u", f"U_ref (k = {k:g})": "u_reference",
+            f"U_corrected (k = {k:g})": "u_corrected"}
 
 
 def html_table(header, rows):
@@ -1848,9 +2052,15 @@ def results_section(run):
             if measurand in m.rows:
                 order.append(m.rows[measurand])
     numeric = set(RESULTS_REQUIRED_NUMBERS) | set(RESULTS_OPTIONAL_NUMBERS)
-    columns = [c for c in run.result_columns
+    present = [c for c in run.result_columns
                if c not in numeric or any(r.values.get(c) is not None for r in order)]
-    dropped = [c for c in RESULTS_COLUMNS if c not in columns]
+    dropped = [c for c in RESULTS_COLUMNS if c not in present]
+    k = run.coverage_factor
+    expanded = expanded_columns(k)
+    columns = []
+    for c in present:
+        columns.append(c)
+        columns += [name for name, source in expanded.items() if source == c]
     body = []
     highlighted = 0
     refused_rows = 0
@@ -1860,25 +2070,37 @@ def results_section(run):
             refused |= REFUSED_DEFAULT_COLUMNS
         if not r.paper_applied:
             refused |= REFUSED_PAPER_COLUMNS
+        # An expanded uncertainty is shaded with the standard uncertainty it is k times.
+        refused |= {name for name, source in expanded.items() if source in refused}
         refused_rows += bool(refused)
+        decimals = row_decimals(r)
         cells = []
         for c in columns:
             classes = []
-            if c in numeric:
-                value = r.values.get(c)
+            if c in numeric or c in expanded:
+                if c in expanded:
+                    u = r.values.get(expanded[c])
+                    value = None if u is None else k * u
+                else:
+                    value = r.values.get(c)
                 classes.append("num")
                 if c in EN_COLUMNS and value is not None and abs(value) > 1.0:
                     classes.append("out")
                     highlighted += 1
-                text = number_text(value, c, r.unit)
+                text = number_text(value, c, r.unit, decimals)
             else:
                 text = r.text.get(c, "")
             if c in refused:
                 classes.append("refused")
             cells.append((text, " ".join(classes) or None))
         body.append(cells)
+    notes = dict(COLUMN_NOTES)
+    for name, source in expanded.items():
+        notes[name] = f"expanded uncertainty = {k:g} × {source} (k = {k:g})"
+    for c in EN_COLUMNS:
+        notes.setdefault(c, EN_DEFINITION)
     out = ["<div class=\"scroll\"><table><thead><tr>"]
-    out += [f"<th title=\"{esc(COLUMN_NOTES[c])}\">{esc(c)}</th>" if c in COLUMN_NOTES
+    out += [f"<th title=\"{esc(notes[c])}\">{esc(c)}</th>" if c in notes
             else f"<th>{esc(c)}</th>" for c in columns]
     out.append("</tr></thead><tbody>")
     for cells in body:
@@ -1890,8 +2112,16 @@ def results_section(run):
     out.append("</tbody></table></div>")
     note = (f"<p class=\"note\">{len(order)} rows ({len(rows_by_id)} measurements × "
             "measurands), ordered by location, orientation, height and mode. Diameter values "
-            "in mm, roundness values in µm (column <code>unit</code>); E_n and ζ are "
-            f"dimensionless. {highlighted} E_n value(s) with |E_n| &gt; 1 are highlighted. "
+            "in mm, roundness values in µm (column <code>unit</code>). <b>Number style (GUM "
+            "7.2.6):</b> in each row every value, standard uncertainty u and expanded "
+            f"uncertainty U = k·u (columns \"U (k = {k:g})\", \"U_ref (k = {k:g})\", "
+            f"\"U_corrected (k = {k:g})\", added by the report) is written to the decimal "
+            "place of two significant digits of the row's smallest standard uncertainty "
+            "(of <code>u</code>, <code>u_reference</code>, <code>u_corrected</code>, "
+            "<code>u_corrected_paper</code>). <b>Sign of E_n</b> (the study's): "
+            f"{esc(EN_DEFINITION)}, k = {k:g} — positive when the CMM reads low; ζ likewise "
+            "with the standard uncertainties; both dimensionless, to 0.01. "
+            f"{highlighted} E_n value(s) with |E_n| &gt; 1 are highlighted. "
             "<code>treatment</code>, <code>bias</code>, <code>u_bias</code>, "
             "<code>corrected</code>, <code>u_corrected</code>, <code>correction_applied</code>"
             " and <code>En_corrected</code> are the default treatment's (roundness: "
@@ -1908,6 +2138,12 @@ def results_section(run):
             + (f" Columns empty in every row and left out: {esc(', '.join(dropped))}."
                if dropped else "") + "</p>")
     return note + "".join(out)
+
+
+def figure_files(figure):
+    """The file names of a figure, PNG first, then the vector formats written beside it."""
+    stem = os.path.splitext(figure.filename)[0]
+    return [stem + "." + kind for kind in FIGURE_FORMATS]
 
 
 def write_html(run, figures, notes, title):
@@ -1933,7 +2169,8 @@ def write_html(run, figures, notes, title):
         parts.append("<p class=\"note\">From <a href=\"run_info.json\">run_info.json</a>.</p>")
         parts.append(html_table(["key", "value"], [[(k, None), (v, None)] for k, v in flat]))
     parts.append(f"<p class=\"note\">E_n uses k = {run.coverage_factor:g} "
-                 f"({esc(run.coverage_factor_source)}).</p>\n")
+                 f"({esc(run.coverage_factor_source)}); {esc(EN_DEFINITION)} "
+                 "(reference − measured: positive when the CMM reads low).</p>\n")
 
     parts.append("<h2 id=\"files\">Files</h2>\n<ul>\n")
     for name, what in (("results.csv", "per-measurement results (table below)"),
@@ -1947,13 +2184,15 @@ def write_html(run, figures, notes, title):
         else:
             parts.append(f"<li>{esc(name)} — not present</li>\n")
     for f in figures:
-        parts.append(f"<li><a href=\"{href('figures/' + f.filename)}\">figures/"
-                     f"{esc(f.filename)}</a> — {esc(f.title)}</li>\n")
+        parts.append(f"<li>{esc(f.title)}: " + " · ".join(
+            f"<a href=\"{href('figures/' + name)}\">figures/{esc(name)}</a>"
+            for name in figure_files(f)) + "</li>\n")
     parts.append("</ul>\n")
 
     parts.append("<h2 id=\"summary\">Summary (summary.csv)</h2>\n")
     parts.append(treatment_definitions(run))
-    parts.append(f"<p class=\"note\">Share in %. Honest uncertainties give {esc(run.honest())} "
+    parts.append(f"<p class=\"note\">{esc(EN_DEFINITION)} (reference − measured). Share in "
+                 f"%. Honest uncertainties give {esc(run.honest())} "
                  f"(k = {run.coverage_factor:g}).</p>\n")
     header = ["factor", "level", "measurand", "treatment", "n", "share |E_n| ≤ 1 (%)",
               "mean E_n", "RMS E_n"]
@@ -2006,8 +2245,10 @@ def write_html(run, figures, notes, title):
             data = base64.b64encode(png.read()).decode("ascii")
         parts.append(f"<figure id=\"{esc(f.filename)}\"><h3>{esc(f.title)}</h3>"
                      f"<img src=\"data:image/png;base64,{data}\" alt=\"{esc(f.title)}\">"
-                     f"<figcaption>{esc(f.caption)} (<a href=\"{href('figures/' + f.filename)}"
-                     f"\">{esc(f.filename)}</a>)</figcaption></figure>\n")
+                     f"<figcaption>{esc(f.caption)} ("
+                     + ", ".join(f"<a href=\"{href('figures/' + name)}\">{esc(name)}</a>"
+                                 for name in figure_files(f))
+                     + ")</figcaption></figure>\n")
 
     parts.append("<h2 id=\"results\">Per-measurement results (results.csv)</h2>\n")
     parts.append(results_section(run))
@@ -2049,7 +2290,8 @@ def main(argv=None):
         traceback.print_exc()
         return 1
     for f in figures:
-        print(os.path.join(run.outdir, "figures", f.filename))
+        for name in figure_files(f):
+            print(os.path.join(run.outdir, "figures", name))
     print(os.path.join(run.outdir, "report.html"))
     for note in notes:
         print(f"{PROG}: note: {note}", file=sys.stderr)

@@ -15,7 +15,7 @@ out="${1:-$root/out/demo}"
 shift || true
 "$root/scripts/build.sh"
 "$build/cli/vcmm" demo --model "$root/examples/cmm_model.json" -o "$out" "$@"
-# Debian's matplotlib lives with /usr/bin/python3 (scripts/install-deps.sh installs it).
-/usr/bin/python3 "$root/python/vcmm_report.py" "$out"
+# `vcmm report` finds a Python with matplotlib (scripts/install-deps.sh installs Debian's).
+"$build/cli/vcmm" report "$out"
 echo
 echo "report: $out/report.html   tables: $out/results.csv, $out/summary.csv, $out/treatments.csv"

@@ -11,9 +11,11 @@ python3-matplotlib, python3-numpy); without them they are skipped with a message
 
 import base64
 import csv
+import html
 import html.parser
 import importlib.util
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -41,6 +43,11 @@ DEMO_FIGURES = ["en_per_measurement.png", "errors_per_measurement.png",
                 "residuals_locations.png", "residuals_orientations.png", "treatments.png",
                 "factors.png", "histogram_C-O000-middle-scan.png",
                 "histogram_C-O000-middle-touch.png"]
+# Every figure is written as PNG, SVG and PDF.
+DEMO_FILES = [name[:-len(".png")] + ext for name in DEMO_FIGURES
+              for ext in (".png", ".svg", ".pdf")]
+# vcmm's command-line program, set by ctest (tests/CMakeLists.txt) for the `vcmm report` test.
+VCMM_CLI = os.environ.get("VCMM_CLI")
 
 
 def run_report(outdir, *extra):
@@ -64,6 +71,32 @@ def png_size(path):
     if data[-12:-4] != b"\x00\x00\x00\x00IEND":
         raise AssertionError(f"{path}: does not end with IEND (truncated?)")
     return struct.unpack(">II", data[16:24])
+
+
+def png_dpi(path):
+    """The resolution a PNG's pHYs chunk states, in dots per inch (None without one)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    position = 8
+    while position + 8 <= len(data):
+        length, kind = struct.unpack(">I4s", data[position:position + 8])
+        if kind == b"pHYs":
+            x, y, unit = struct.unpack(">IIB", data[position + 8:position + 17])
+            return None if unit != 1 else min(x, y) * 0.0254
+        position += 12 + length
+    return None
+
+
+def check_vector_files(test, stem):
+    """The SVG and PDF beside a PNG exist and look whole."""
+    with open(stem + ".svg", "rb") as f:
+        svg = f.read()
+    test.assertIn(b"<svg", svg[:1000])
+    test.assertTrue(svg.rstrip().endswith(b"</svg>"), stem)
+    with open(stem + ".pdf", "rb") as f:
+        pdf = f.read()
+    test.assertTrue(pdf.startswith(b"%PDF-"), stem)
+    test.assertIn(b"%%EOF", pdf[-64:])
 
 
 class Collector(html.parser.HTMLParser):
@@ -133,18 +166,22 @@ class DemoDirectory(unittest.TestCase):
 
     def test_every_expected_png_is_valid_and_sensibly_sized(self):
         expected = DEMO_FIGURES
-        self.assertEqual(sorted(os.listdir(self.figures)), sorted(expected))
+        self.assertEqual(sorted(os.listdir(self.figures)), sorted(DEMO_FILES))
         for name in expected:
             with self.subTest(name=name):
-                width, height = png_size(os.path.join(self.figures, name))
-                # ~10-24 inch wide figures at 110 dpi, cropped to their content.
-                self.assertTrue(700 <= width <= 3000, (name, width))
-                self.assertTrue(350 <= height <= 3000, (name, height))
+                path = os.path.join(self.figures, name)
+                width, height = png_size(path)
+                self.assertGreaterEqual(png_dpi(path), 199.9)
+                # ~10-28 inch wide figures at 200 dpi, cropped to their content.
+                self.assertTrue(1400 <= width <= 6000, (name, width))
+                self.assertTrue(700 <= height <= 6000, (name, height))
+                check_vector_files(self, path[:-len(".png")])
                 # A drawn figure with text and data is tens of kB; a blank one is a few kB.
                 self.assertGreater(os.path.getsize(os.path.join(self.figures, name)), 20000)
 
     def test_histograms_are_one_scanning_and_one_touch_at_the_centre(self):
-        names = [n for n in os.listdir(self.figures) if n.startswith("histogram_")]
+        names = [n for n in os.listdir(self.figures)
+                 if n.startswith("histogram_") and n.endswith(".png")]
         ids = sorted(n[len("histogram_"):-len(".png")] for n in names)
         self.assertEqual(ids, ["C-O000-middle-scan", "C-O000-middle-touch"])
         self.assertTrue(all(i in self.ids for i in ids))
@@ -156,7 +193,7 @@ class DemoDirectory(unittest.TestCase):
 
     def test_html_embeds_every_figure_as_a_data_uri_equal_to_the_png(self):
         images = [a["src"] for tag, a in self.page.tags if tag == "img"]
-        pngs = sorted(os.listdir(self.figures))
+        pngs = sorted(n for n in os.listdir(self.figures) if n.endswith(".png"))
         self.assertEqual(len(images), len(pngs))
         embedded = set()
         for src in images:
@@ -184,8 +221,37 @@ class DemoDirectory(unittest.TestCase):
         hrefs = {a.get("href") for tag, a in self.page.tags if tag == "a"}
         for name in ("results.csv", "summary.csv", "results.json", "treatments.csv",
                      "figures/en_per_measurement.png", "figures/errors_per_measurement.png",
-                     "figures/factors.png"):
+                     "figures/factors.png", "figures/factors.svg", "figures/factors.pdf"):
             self.assertIn(name, hrefs)
+
+    def test_results_table_has_expanded_uncertainties_and_the_sign_of_en(self):
+        headers = set(self.page.th_texts)
+        for name in ("U (k = 2)", "U_ref (k = 2)", "U_corrected (k = 2)"):
+            self.assertIn(name, headers)
+        self.assertIn("E_n = (reference − measured) / √(U_ref² + U²), U = k·u", self.html)
+        self.assertIn("positive when the CMM reads low", self.html)
+
+    def test_results_table_writes_each_row_to_the_decimal_place_of_its_u(self):
+        # Every roundness row: the values, their u and U share the decimal places of two
+        # significant digits of the row's smallest u (GUM 7.2.6).
+        import vcmm_report
+        table = self.html[self.html.index("<h2 id=\"results\">"):]
+        header = [html.unescape(h) for h in re.findall(r"<th(?: [^>]*)?>(.*?)</th>", table)]
+        rows = [dict(zip(header, (html.unescape(c) for c in
+                                  re.findall(r"<td(?: [^>]*)?>(.*?)</td>", row))))
+                for row in re.findall(r"<tr>(.*?)</tr>", table)[1:]]
+        rows = [r for r in rows if r.get("measurand") == "roundness"]
+        self.assertEqual(len(rows), len(self.ids))
+        for cell in rows:
+            u = min(float(cell[c]) for c in ("u", "u_reference", "u_corrected",
+                                              "u_corrected_paper") if float(cell[c]) > 0)
+            decimals = vcmm_report.gum_decimals(u)
+            for column in ("estimate", "u", "U (k = 2)", "reference", "corrected"):
+                written = cell[column].split(".")
+                self.assertEqual(len(written[1]) if len(written) == 2 else 0, decimals,
+                                 (cell["id"], column, cell[column]))
+            self.assertAlmostEqual(float(cell["U (k = 2)"]), 2 * float(cell["u"]),
+                                   delta=1.01 * 10.0 ** -decimals)
 
     def test_html_contains_the_three_tables(self):
         headers = set(self.page.th_texts)
@@ -320,6 +386,7 @@ def draw(outdir, *names):
                  "treatments": vcmm_report.figure_treatments,
                  "factors": vcmm_report.figure_factors}
     directory = os.path.join(outdir, "figures_in_process")
+    vcmm_report.FIGURE_FORMATS = ("png",)       # the vector files are tested elsewhere
     return {name: functions[name](plt, np, run, os.path.join(directory, name + ".png"))
             for name in names}
 
@@ -360,15 +427,28 @@ class FigureContents(unittest.TestCase):
         titles = list(dict.fromkeys(k.rsplit(": ", 1)[0] for k in f.series))
         self.assertEqual(titles.index(study[0].rsplit(": ", 1)[0]),
                          titles.index(default[0].rsplit(": ", 1)[0]) + 1)
-        for label in ("E_n uncorrected", "E_n corrected (default: shrinkage; diameter: paper)",
-                      "E_n (a) seed study", "E_n (c) U + |b|"):
+        for label in ("$E_n$ uncorrected",
+                      "$E_n$ corrected (default: shrinkage; diameter: paper)",
+                      "$E_n$ (a) seed study", "$E_n$ (c) U + |b|"):
             self.assertIn(label, f.texts)
         self.assertFalse(any("(b)" in t for t in f.texts), "no (b) without --denoised")
 
-    def test_en_figure_ticks_name_the_measurements(self):
+    def test_en_figure_ticks_are_short_and_horizontal(self):
         f = self.figures["en_per_measurement"]
-        for mid in ("C-O000-top-scan", "C-R090-top-touch", "E2-O000-bottom-touch"):
-            self.assertIn(mid, f.texts)
+        # Heights under the measurements, orientations under the set-ups (the repeated
+        # set-up C-R000 marked ′), locations under their groups; no long ids.
+        for label in ("t", "m", "b", "0°", "0°′", "90°", "270°", "C", "L1", "E2"):
+            self.assertIn(label, f.texts)
+        self.assertNotIn("C-O000-top-scan", f.texts)
+        self.assertTrue(all(rotation == 0.0 for rotation in f.limits["tick_rotations"]),
+                        f.limits["tick_rotations"])
+
+    def test_en_figure_writes_e_n_as_a_subscript_and_states_its_sign(self):
+        f = self.figures["en_per_measurement"]
+        self.assertIn("$E_n$", f.texts)                 # the axis labels
+        self.assertFalse(any("E_n" in t and "$" not in t for t in f.texts),
+                         [t for t in f.texts if "E_n" in t and "$" not in t])
+        self.assertTrue(any("reference − measured" in t for t in f.texts))
 
     def test_errors_figure_has_three_series_for_the_roundness(self):
         f = self.figures["errors_per_measurement"]
@@ -378,8 +458,8 @@ class FigureContents(unittest.TestCase):
             "roundness: uncorrected": n, "roundness: corrected (default: shrinkage)": n,
             "roundness: (a) seed study": n})
         self.assertTrue(any(t.startswith("truth within ±U — uncorrected:") for t in f.texts))
-        self.assertIn("corrected (default: shrinkage; diameter: paper) ± k·u_corrected "
-                      "(incl. u_bias)", f.texts)
+        self.assertIn("corrected (default: shrinkage; diameter: paper) ± U (k = 2), "
+                      "U = k·u_corrected (incl. u_bias)", f.texts)
 
     def test_treatments_figure_has_a_seed_study_bar(self):
         f = self.figures["treatments"]
@@ -418,7 +498,7 @@ class DenoisedRunWithPaperDefault(unittest.TestCase):
     def test_succeeds_with_every_figure(self):
         self.assertEqual(self.proc.returncode, 0, self.proc.stderr)
         self.assertEqual(sorted(os.listdir(os.path.join(self.outdir, "figures"))),
-                         sorted(DEMO_FIGURES))
+                         sorted(DEMO_FILES))
 
     def test_labels_follow_the_treatment_column(self):
         self.assertIn("<td>corrected (default: paper = (a))</td>", self.html)
@@ -431,8 +511,8 @@ class DenoisedRunWithPaperDefault(unittest.TestCase):
         titles = panel_titles(f)
         self.assertTrue(any("default treatment 'paper' = (a)" in t for t in titles), titles)
         self.assertFalse(any(t.startswith("Roundness, (a)") for t in titles), titles)
-        self.assertIn("E_n (b) denoised", f.texts)
-        self.assertIn("E_n corrected (default: paper = (a))", f.texts)
+        self.assertIn("$E_n$ (b) denoised", f.texts)
+        self.assertIn("$E_n$ corrected (default: paper = (a))", f.texts)
 
     def test_errors_figure_has_two_series_per_measurand(self):
         self.assertEqual(len(self.figures["errors_per_measurement"].series), 4)
@@ -441,6 +521,149 @@ class DenoisedRunWithPaperDefault(unittest.TestCase):
         f = self.figures["treatments"]
         self.assertIn("(a)\nseed study", f.texts)
         self.assertIn("(b)\ndenoised", f.texts)
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class GumRounding(unittest.TestCase):
+    """One number style: u to two significant digits, values to the same decimal place."""
+
+    def test_two_significant_digits_of_u(self):
+        import vcmm_report
+        self.assertEqual(vcmm_report.gum_decimals(0.291), 2)
+        self.assertEqual(vcmm_report.gum_decimals(0.000293), 5)
+        self.assertEqual(vcmm_report.gum_decimals(0.0996), 2)      # 0.100 -> '0.10'
+        self.assertEqual(vcmm_report.gum_decimals(29.0), 0)
+        self.assertIsNone(vcmm_report.gum_decimals(0.0))
+
+    def test_values_rounded_to_the_place_of_u(self):
+        import vcmm_report
+        f = vcmm_report.format_with_uncertainty
+        # The issue's example: bias +0.000828 um next to u = 0.291 um.
+        self.assertEqual(f(0.000828, 0.291, signed=True), "+0.00")
+        self.assertEqual(f(-0.001, 0.291, signed=True), "+0.00")   # no '-0.00'
+        self.assertEqual(f(0.291, 0.291), "0.29")
+        self.assertEqual(f(171.0001264, 0.000293), "171.00013")
+        self.assertEqual(f(None, 0.1), "n/a")
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class AxesFollowTheData(unittest.TestCase):
+    """The polar and unrolled residual plots and the histograms are scaled to the data, not
+    to a fixed range: a profile ten times smaller gets axes ten times smaller (the polar plot
+    to the filtered profile, the unrolled panels to every point)."""
+
+    @classmethod
+    def setUpClass(cls):
+        import vcmm_report
+        cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_scale_")
+        cls.outdir = os.path.join(cls.tmp, "scale")
+        make_report_fixture.write_fixture(cls.outdir, seed=21, trials=200,
+                                          locations=("C", "L1"), orientations_deg=(0, 90),
+                                          heights=("middle",))
+        vcmm_report.FIGURE_FORMATS = ("png",)
+        cls.report_run = vcmm_report.load_run(cls.outdir)
+        cls.plt, cls.np = vcmm_report.import_matplotlib()
+        available = vcmm_report.available_ids(cls.report_run, "residuals")
+        first, second, cls.note = vcmm_report.choose_location_pair(cls.report_run, available)
+        cls.profiles = [(m, vcmm_report.read_residuals(
+            os.path.join(cls.outdir, "residuals", m.id + ".csv"))) for m in (first, second)]
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def draw_residuals(self, scale):
+        import vcmm_report
+        profiles = [(m, vcmm_report.Residuals(p.angle_deg, [scale * v for v in p.deviation_um],
+                                              [scale * v for v in p.filtered_um]))
+                    for m, p in self.profiles]
+        return vcmm_report.figure_residuals(
+            self.plt, self.np, self.report_run, profiles,
+            os.path.join(self.outdir, "figures", f"residuals_{scale:g}.png"), "test",
+            self.note, "locations")
+
+    def test_polar_and_unrolled_axes_follow_the_data(self):
+        for scale in (1.0, 0.1, 10.0):
+            with self.subTest(scale=scale):
+                f = self.draw_residuals(scale)
+                # The polar plot follows the filtered profiles, the unrolled panels every
+                # point.
+                for axis, data in (("polar", "filtered"), ("unrolled", "all")):
+                    low, high = f.limits[data]
+                    shown_low, shown_high = f.limits[axis]
+                    self.assertLessEqual(shown_low, low)
+                    self.assertGreaterEqual(shown_high, high)
+                    # Not a fixed range: at most about twice the data's span.
+                    self.assertLess(shown_high - shown_low, 2.5 * (high - low),
+                                    (axis, f.limits))
+
+    def test_polar_names_the_reference_filter_zone_and_ront(self):
+        f = self.draw_residuals(1.0)
+        joined = "\n".join(f.texts)
+        self.assertIn("maximum-inscribed (MI)", joined)        # run_info reference_circle
+        self.assertIn("Gaussian filter 50 UPR", joined)        # run_info filter_cutoff_upr
+        self.assertIn("MI zone", joined)
+        self.assertIn("RONt = ", joined)
+        self.assertIn("0", f.texts)                            # the base circle's ring label
+
+    def test_histogram_axes_and_numbers(self):
+        import vcmm_report
+        m = next(m for m in self.report_run.measurements if m.id == "C-O000-middle-scan")
+        samples = vcmm_report.read_samples(os.path.join(self.outdir, "samples",
+                                                        m.id + ".csv"))
+        f = vcmm_report.figure_histogram(self.plt, self.np, self.report_run, m, samples,
+                                         os.path.join(self.outdir, "figures", "h.png"))
+        for measurand in ("diameter", "roundness"):
+            (x_low, x_high), (low, high) = f.limits[measurand]
+            self.assertLessEqual(x_low, low)
+            self.assertGreaterEqual(x_high, high)
+        # The estimate and the Monte Carlo mean are separate legend entries; the corrected
+        # intervals are drawn (and written out for the check).
+        for label in ("estimate from data", "Monte Carlo mean (seed-study run)",
+                      "default corrected ± U_c (incl. u_bias)", "(a) corrected ± U_c"):
+            self.assertIn(label, f.texts)
+        # Every number in µm of a panel title has the same decimal places.
+        titles = [t for t in f.texts if t.startswith(("diameter, uncorrected",
+                                                      "roundness, uncorrected"))]
+        self.assertEqual(len(titles), 2)
+        for title in titles:
+            places = {len(x) for x in re.findall(r"[-+]?\d+\.(\d+) µm", title)}
+            self.assertEqual(len(places), 1, title)
+            self.assertIn("$E_n$", title)
+
+
+@unittest.skipUnless(HAVE_PLOTTING and VCMM_CLI, "VCMM_CLI not set (ctest sets it) or "
+                     + SKIP_MESSAGE)
+class CliReport(unittest.TestCase):
+    """`vcmm report DIR` finds a Python with matplotlib and the script, and passes the exit
+    code through."""
+
+    def test_report_command(self):
+        tmp = tempfile.mkdtemp(prefix="vcmm_report_cli_")
+        try:
+            outdir = os.path.join(tmp, "run")
+            make_report_fixture.write_fixture(outdir, seed=4, trials=20, locations=("C",),
+                                              orientations_deg=(0,), heights=("middle",))
+            # A PATH whose first python3 has no matplotlib: /usr/bin/python3 is tried first.
+            fake = os.path.join(tmp, "bin")
+            os.makedirs(fake)
+            with open(os.path.join(fake, "python3"), "w") as f:
+                f.write("#!/bin/sh\nexit 1\n")
+            os.chmod(os.path.join(fake, "python3"), 0o755)
+            env = dict(os.environ, PATH=fake + os.pathsep + os.environ.get("PATH", ""))
+            proc = subprocess.run([VCMM_CLI, "report", outdir, "--title", "CLI"],
+                                  capture_output=True, text=True, timeout=300, env=env)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            self.assertIn(os.path.join(outdir, "report.html"), proc.stdout)
+            for kind in ("png", "svg", "pdf"):
+                self.assertTrue(os.path.isfile(os.path.join(
+                    outdir, "figures", "en_per_measurement." + kind)), kind)
+            proc = subprocess.run([VCMM_CLI, "report", os.path.join(tmp, "missing")],
+                                  capture_output=True, text=True, timeout=120)
+            self.assertEqual(proc.returncode, 3, proc.stderr)
+            self.assertIn("not a directory", proc.stderr)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
 
 
 @unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)

@@ -4,7 +4,7 @@
 //   script: <prefix>/share/vcmm/vcmm_report.py beside an installed binary, else
 //           python/vcmm_report.py of the source tree this binary was built from;
 //   Python: the first of /usr/bin/python3 and every python3 on PATH that imports matplotlib
-//           and numpy; none → says what to install (exit 1).
+//           and numpy; none → says what to install (exit 3: a program it needs is missing).
 // The script's exit code is returned (0 ok, 1 internal error, 2 usage, 3 invalid input).
 #include <fcntl.h>
 #include <spawn.h>
@@ -89,7 +89,7 @@ int run_report(const ReportOptions& o) {
     std::cerr << "vcmm report: python/vcmm_report.py not found (looked for";
     for (const auto& s : script_candidates()) std::cerr << " " << s.string();
     std::cerr << "); reinstall vcmm or run the script from the source tree\n";
-    return kFailure;
+    return kInvalidInput;
   }
   std::vector<fs::path> tried;
   for (const auto& python : python_candidates()) {
@@ -110,7 +110,7 @@ int run_report(const ReportOptions& o) {
   for (const auto& p : tried) std::cerr << " " << p.string();
   if (tried.empty()) std::cerr << " /usr/bin/python3 and python3 on PATH: none exists";
   std::cerr << "); install them: apt-get install python3-matplotlib python3-numpy\n";
-  return kFailure;
+  return kInvalidInput;
 }
 
 }  // namespace

@@ -175,6 +175,18 @@ void validate_measurement(const Measurement& m, const char* caller) {
   }
   check_finite(m.placement.orientation_rad, caller, "placement.orientation_rad");
   check_finite(m.temperature_c, caller, "temperature_c");
+  // The same physical ranges as the file readers (a Measurement built in code gets no
+  // kelvin or absolute-zero temperature, no location outside any CMM volume past them).
+  const auto in_range = [&](const PhysicalRange& range, double v,
+                            const char* what) {
+    if (const std::string p = range_problem(range, v); !p.empty())
+      throw InvalidInput(std::string(caller) + ": " + what + " " + p);
+  };
+  in_range(physical_range::temperature_c, m.temperature_c, "temperature_c");
+  for (int k = 0; k < 3; ++k) {
+    in_range(physical_range::coordinate_mm, m.placement.location_mm(k), "placement.location_mm");
+    in_range(physical_range::coordinate_mm, m.stylus_offset_mm(k), "stylus_offset_mm");
+  }
 }
 
 Eigen::Matrix3Xd machine_coordinates(const Measurement& m) {

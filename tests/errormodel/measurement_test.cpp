@@ -209,6 +209,16 @@ TEST(MeasurementValidation, EachPreconditionThrowsWithIndexAndValue) {
   m = good;
   m.stylus_offset_mm.x() = NAN;
   expect_msg(m, "stylus_offset_mm must be finite");
+  // Physical ranges as in the file readers: kelvin, below absolute zero, out of any volume.
+  m = good;
+  m.temperature_c = 293.15;
+  expect_msg(m, "kelvin");
+  m = good;
+  m.temperature_c = -300.0;
+  expect_msg(m, "absolute zero");
+  m = good;
+  m.placement.location_mm.y() = 1e300;
+  expect_msg(m, "placement.location_mm must");
   expect_msg(Measurement{}, "no points");
 }
 

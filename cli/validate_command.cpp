@@ -19,6 +19,7 @@
 #include "commands.h"
 #include "option_values.h"
 #include "run_control.h"
+#include "vcmm/geometry/text_file.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/validation/campaign.h"
 #include "vcmm/validation/campaign_run.h"
@@ -144,11 +145,7 @@ int run_demo(const CampaignCliOptions& o) {
       text = std::string(va::bundled_example_model_json());
       model_name = "the bundled example model (examples/cmm_model.json)";
     } else {
-      std::ifstream in(o.model, std::ios::binary);
-      if (!in) throw std::invalid_argument("cannot read the model file '" + o.model + "'");
-      std::ostringstream os;
-      os << in.rdbuf();
-      text = os.str();
+      text = geometry::read_text_file(o.model, "digital-model file");
     }
     const errormodel::DigitalModel model =
         errormodel::parse_digital_model(text, o.model.empty() ? "examples/cmm_model.json" : o.model);

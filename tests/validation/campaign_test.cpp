@@ -286,7 +286,7 @@ TEST_F(CampaignTest, MissingFilesNameTheEntryAndTheResolvedPath) {
     ADD_FAILURE() << "no exception";
   } catch (const CampaignError& e) {
     EXPECT_EQ(std::string(e.what()), (dir_ / "nothing.json").string() +
-                                         ": cannot open the campaign file");
+                                         ": cannot read the campaign file: no such file");
   }
 }
 
@@ -674,7 +674,7 @@ TEST_F(CampaignTest, ReferenceEvaluationErrorsNameTheEntry) {
     ADD_FAILURE() << "no exception";
   } catch (const CampaignError& e) {
     EXPECT_EQ(e.json_path(), "measurements[1].reference.diameter.profile");
-    EXPECT_NE(std::string(e.what()).find("cannot open file for reading"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("cannot read the roundness profile file: no such file"), std::string::npos);
   }
   EXPECT_THROW(evaluate_diameter_reference(c, 2), vcmm::geometry::InvalidInput);
   EXPECT_THROW(evaluate_roundness_reference(c, 0, 0.0), vcmm::geometry::InvalidInput);

@@ -17,6 +17,7 @@
 
 #include "vcmm/errormodel/json_input.h"
 #include "vcmm/errormodel/physical_ranges.h"
+#include "vcmm/geometry/text_file.h"
 
 #include <cmath>
 #include <fstream>
@@ -626,12 +627,9 @@ Campaign parse_campaign(std::string_view json_text, const fs::path& campaign_pat
 }
 
 Campaign read_campaign_file(const fs::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw_error(path.string(), std::nullopt, {}, "", "cannot open the campaign file");
-  std::ostringstream text;
-  text << f.rdbuf();
-  if (f.bad()) throw_error(path.string(), std::nullopt, {}, "", "read error");
-  return parse_campaign(text.str(), path);
+  if (const std::string why = geometry::unreadable_file_reason(path.string()); !why.empty())
+    throw_error(path.string(), std::nullopt, {}, "", "cannot read the campaign file: " + why);
+  return parse_campaign(geometry::read_text_file(path.string(), "campaign file"), path);
 }
 
 std::string campaign_json(const Campaign& c) {

@@ -23,6 +23,7 @@
 #include "vcmm/validation/comparison.h"
 #include "vcmm/validation/provenance.h"
 #include "vcmm/validation/ring_uncertainty_report.h"
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::validation {
 namespace {
@@ -44,12 +45,7 @@ constexpr double kSetupToleranceC = 1e-9;
 constexpr const char* kOutcomeFormat = "vcmm.campaign_measurement.v2";
 
 std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in)
-    throw geometry::InvalidInput(p.string() + ": cannot read the file: " + std::strerror(errno));
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
+  return geometry::read_text_file(p.string(), "file");
 }
 
 /// FNV-1a 64 over a sequence of byte strings (with their lengths, so boundaries count).

@@ -1,9 +1,10 @@
-// `vcmm validate CAMPAIGN.json -o OUTDIR [--threads T] [--denoised] [--progress ...]`
+// `vcmm validate CAMPAIGN.json -o OUTDIR [--threads T] [--denoised]
+//                [--budget [--budget-trials N]] [--progress ...]`
 //   runs the uncertainty evaluation of every measurement of a campaign, compares with the
 //   reference values (E_n, zeta) under the bias treatments, and writes the tables; resumable.
 // `vcmm demo -o OUTDIR [--model MODEL.json] [--trials M] [--seed S] [--world-seed W]
 //            [--reference MI|MZ|LS|MC] [--form-scale F] [--kinematics corrected|uncorrected]
-//            [--bias-treatment shrinkage|paper] ...`
+//            [--bias-treatment shrinkage|paper] [--budget [--budget-trials N]] ...`
 //   builds the synthetic ground-truth world (docs/demo.md), writes it as a campaign into
 //   OUTDIR/world and validates it, with the true values known.
 // (docs/validation.md, docs/cli.md.)
@@ -44,6 +45,8 @@ struct CampaignCliOptions {
   std::string campaign, output, model;
   unsigned threads = 0;
   bool denoised = false;
+  bool budget = false;
+  std::uint64_t budget_trials = 0;  // 0: the campaign's (else the measurement's trials)
   std::string progress = "auto";
   // demo only
   std::uint64_t trials = 10000;
@@ -129,15 +132,54 @@ int guarded(const char* name, Body body) {
   }
 }
 
+/// `--budget [--budget-trials N]` onto the evaluation settings `ev` (whose trials come from
+/// `trials_source`); returns the usage error, "" when the options fit. Without --budget the
+/// settings stay as they are (a campaign file may ask for the budget itself).
+std::string apply_budget_options(const CampaignCliOptions& o, va::EvaluationSettings& ev,
+                                 const std::string& trials_source) {
+  if (!o.budget) return {};
+  if (o.budget_trials > ev.trials)
+    return "--budget-trials " + std::to_string(o.budget_trials) + " exceeds the " +
+           std::to_string(ev.trials) + " trials per measurement (" + trials_source +
+           "): each budget run is compared with the full run over the same trials";
+  ev.budget = true;
+  if (o.budget_trials != 0) ev.budget_trials = o.budget_trials;
+  return {};
+}
+
+/// The budget options as given, for the command line recorded in run_info.json.
+std::string budget_arguments(const CampaignCliOptions& o) {
+  if (!o.budget) return {};
+  return " --budget" +
+         (o.budget_trials != 0 ? " --budget-trials " + std::to_string(o.budget_trials) : "");
+}
+
 int run_validate(const CampaignCliOptions& o) {
   return guarded("validate", [&] {
-    const va::Campaign campaign = va::read_campaign_file(o.campaign);
+    va::Campaign campaign = va::read_campaign_file(o.campaign);
+    const std::string usage =
+        apply_budget_options(o, campaign.evaluation, "evaluation.trials of " + o.campaign);
+    if (!usage.empty()) {
+      std::fprintf(stderr, "vcmm validate: error: %s\n", usage.c_str());
+      return static_cast<int>(kUsage);
+    }
     return run_campaign_cli(campaign, o.output, o, {}, "validate",
-                            {{"command", "vcmm validate " + o.campaign + " -o " + o.output}});
+                            {{"command", "vcmm validate " + o.campaign + " -o " + o.output +
+                                             (o.denoised ? " --denoised" : "") +
+                                             budget_arguments(o)}});
   });
 }
 
 int run_demo(const CampaignCliOptions& o) {
+  {
+    va::EvaluationSettings ev;
+    ev.trials = o.trials;
+    const std::string usage = apply_budget_options(o, ev, "--trials");
+    if (!usage.empty()) {  // before the world is built
+      std::fprintf(stderr, "vcmm demo: error: %s\n", usage.c_str());
+      return kUsage;
+    }
+  }
   return guarded("demo", [&] {
     std::string text;
     std::string model_name = o.model;
@@ -162,6 +204,7 @@ int run_demo(const CampaignCliOptions& o) {
     ev.reference_circle = *va::reference_circle_from_string(upper_case(o.reference));
     ev.kinematics_corrected = o.kinematics == "corrected";
     ev.bias_treatment = *va::roundness_bias_treatment_from_string(o.bias_treatment);
+    apply_budget_options(o, ev, "--trials");  // checked above
     const std::filesystem::path world_dir = std::filesystem::path(o.output) / "world";
     auto truth = va::write_demo_campaign(world, text, ev, world_dir);
     const va::Campaign campaign = va::read_campaign_file(world_dir / "campaign.json");
@@ -176,7 +219,7 @@ int run_demo(const CampaignCliOptions& o) {
                          std::to_string(o.world_seed) + " --reference " + upper_case(o.reference) +
                          " --form-scale " + internal_shortest(o.form_scale) + " --kinematics " +
                          o.kinematics + " --bias-treatment " + o.bias_treatment +
-                         (o.denoised ? " --denoised" : "")},
+                         (o.denoised ? " --denoised" : "") + budget_arguments(o)},
          {"world", (world_dir / "campaign.json").string()},
          {"form_scale", internal_shortest(o.form_scale)}});
   });
@@ -190,6 +233,14 @@ void add_common(CLI::App* cmd, CampaignCliOptions& o) {
       ->default_val(0);
   cmd->add_flag("--denoised", o.denoised,
                 "also run treatment (b) (one more Monte Carlo, on the denoised profile)");
+  auto* budget = cmd->add_flag(
+      "--budget", o.budget,
+      "also the uncertainty budget of every measurement: each error source alone on the same "
+      "random numbers (one more run per source; budget.csv; docs/validation.md)");
+  cmd->add_option("--budget-trials", o.budget_trials,
+                  "trials of each budget run (default and at most: the trials per measurement)")
+      ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}))
+      ->needs(budget);
   cmd->add_option("--progress", o.progress,
                   "progress bar on stderr: auto (when a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}))

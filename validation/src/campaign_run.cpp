@@ -420,7 +420,7 @@ json summary_json(const std::vector<SummaryRow>& rows) {
   return a;
 }
 
-/// budget.csv (docs/formats.md): per measurement one row per error source, then the
+/// budget.csv (docs/validation.md, "Output directory"): per measurement one row per error source, then the
 /// quadrature sum √Σu_i² (with its ratio to the full u) and the full run's u over the same
 /// trials. u in µm for both measurands; shares u_i²/Σu_j² as fractions.
 std::string budget_csv(const std::vector<MeasurementOutcome>& outcomes) {

@@ -209,8 +209,9 @@ struct Campaign {
 /// height top|middle|bottom, mode scanning|touch_trigger); filter_cutoff_upr > 0 or null;
 /// trials an integer in [min_campaign_trials, max_campaign_trials]; seed an unsigned 64-bit
 /// integer; coverage_probability in (0, 1); k > 0; budget a boolean; budget_trials only with
-/// "budget": true, an integer in [min_campaign_trials, trials]; at least one measurement; ids matching
-/// [A-Za-z0-9_.-]+, not "." or "..", at most max_measurement_id_length characters, unique;
+/// "budget": true, an integer in [min_campaign_trials, trials]; at least one measurement; ids
+/// matching [A-Za-z0-9_.-]+, not "." or "..", at most max_measurement_id_length characters,
+/// unique;
 /// location labels matching [A-Za-z0-9_.-]+ (they go into CSV tables unquoted); location_mm
 /// three numbers; temperature_c in [−50, 100] °C (errormodel/physical_ranges.h: a kelvin value is caught); a reference
 /// with roundness and/or diameter, each in exactly one of its two forms (value_um ≥ 0,

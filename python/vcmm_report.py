@@ -622,6 +622,9 @@ def read_budget(path, measurements):
                              f"appears twice (first at line {seen[(mid, source)]})")
         seen[(mid, source)] = line
         trials = parse_count(f["trials"], path, line, "trials")
+        if trials < 2:
+            raise InputError(f"{path}: line {line}: column 'trials' must be >= 2 (a standard "
+                             f"deviation needs two samples); '{f['trials']}'")
         b = budgets.setdefault(mid, Budget(mid, mode, trials, line))
         if trials != b.trials:
             raise InputError(f"{path}: line {line}: measurement '{mid}' has trials {trials} "
@@ -2005,7 +2008,7 @@ def figure_budget(plt, np, run, path):
         r = limits["ratio " + measurand]
         return "not defined (full u = 0)" if r is None else f"{r[0]:.3f} to {r[1]:.3f}"
     smallest = trials[0]
-    tolerance = 4.0 / math.sqrt(2.0 * (smallest - 1)) if smallest > 1 else float("nan")
+    tolerance = 4.0 / math.sqrt(2.0 * (smallest - 1))     # read_budget: trials >= 2
     caption = (
         "For each error source, the median over the measurements of one probing mode ("
         + ", ".join(f"{mode.replace('_', '-')}: {count[mode]}" for mode in modes)

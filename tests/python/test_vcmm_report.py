@@ -729,7 +729,9 @@ class BudgetFigure(unittest.TestCase):
                  "column 'share_roundness' must be a fraction in [0, 1]; '1.5'"),
                 ("mode", lambda r: r.update(mode="touch_trigger")
                  if r["mode"] == "scanning" and r["source"] == "probe" else None,
-                 "has mode 'touch_trigger' but 'scanning' in results.csv")):
+                 "has mode 'touch_trigger' but 'scanning' in results.csv"),
+                ("trials", lambda r: r.update(trials="1"),
+                 "column 'trials' must be >= 2")):
             outdir = os.path.join(self.tmp, "bad_" + name)
             shutil.copytree(self.outdir, outdir)
             rows = read_budget_rows(outdir)

@@ -30,9 +30,10 @@ class MpiSession {
   unsigned size() const;  ///< of MPI_COMM_WORLD
   /// Processes of this job on this node (MPI_COMM_TYPE_SHARED), ≥ 1: they share its cores.
   unsigned processes_on_this_node() const;
-  /// MPI_COMM_WORLD as a uncertainty::ProcessGroup: Allgatherv of the samples in place (in
-  /// pieces of ≤ 2³⁰ doubles by broadcasts when a count or offset exceeds MPI's int), Allgather
-  /// of the status words.
+  /// MPI_COMM_WORLD as a uncertainty::ProcessGroup: Iallgatherv of the samples in place (in
+  /// pieces of ≤ 2³⁰ doubles by broadcasts when a count or offset exceeds MPI's int), Iallgather
+  /// of the status words, each completed by MPI_Test every 100 µs: a process waiting for the
+  /// others sleeps instead of spinning on a core they need.
   uncertainty::ProcessGroup& group();
   /// MPI_Abort(MPI_COMM_WORLD, code): ends every process of the job at once (none is left
   /// waiting in a collective), and the launcher exits with `code`.

@@ -86,7 +86,8 @@ int main(int argc, char** argv) {
       vcmm::cli::set_processes(&session->group(), session->processes_on_this_node());
   }
   const int code = run_command(argc, argv);
-  if (session && session->size() > 1 && code != vcmm::cli::kOk) {
+  if (session && session->size() > 1 && code != vcmm::cli::kOk &&
+      code != vcmm::cli::kInterrupted) {  // a stop (SIGUSR1) is agreed by all: they all end
     // Another process may wait in a collective this one will never enter (e.g. only rank 0
     // writes, and its write failed): end the whole job now, with this exit code.
     // Rank 0 aborts at once; the others wait a moment first, so that when every process

@@ -2,7 +2,7 @@
 # the outputs must be byte-identical but for the fields that say how the run was spread or how
 # long it took. Run by CTest (tests/CMakeLists.txt) only when MPI was found:
 #   cmake -DMODE=uncertainty|validate|demo|bad_input -DVCMM=<plain vcmm> -DMPIEXEC=<mpirun>
-#         -DSOURCE_DIR=<repo> -DWORK_DIR=<scratch> -P run_mpi_cli_test.cmake
+#         -DSOURCE_DIR=<repo> -DWORK_DIR=<scratch> [-DWORLD=<demo world>] -P run_mpi_cli_test.cmake
 # `VCMM` is the plain (static) command: under mpirun it hands over to vcmm-mpi beside it, so
 # the hand-over is tested too. Each mode takes a few seconds on the 2-core test machine.
 cmake_minimum_required(VERSION 3.22)
@@ -89,7 +89,9 @@ if(MODE STREQUAL "uncertainty")
   set(args uncertainty --model "${model}" --points "${WORK_DIR}/scan.csv" --trials 600
            --pilot-trials 100 --budget --budget-trials 200 --json)
   run_ok("${WORK_DIR}" "${WORK_DIR}/plain.json" "${VCMM}" ${args} --threads 2)
-  run_ok("${WORK_DIR}" "${WORK_DIR}/np1.json" ${mpirun} -np 1 "${VCMM}" ${args} --threads 2)
+  # One process: `vcmm` runs as itself; `vcmm-mpi` initialises MPI for a job of one.
+  get_filename_component(bin "${VCMM}" DIRECTORY)
+  run_ok("${WORK_DIR}" "${WORK_DIR}/np1.json" ${mpirun} -np 1 "${bin}/vcmm-mpi" ${args} --threads 2)
   run_ok("${WORK_DIR}" "${WORK_DIR}/np2.json" ${mpirun} -np 2 "${VCMM}" ${args} --threads 1)
   expect_same_file("${WORK_DIR}/plain.json" "${WORK_DIR}/np1.json")
   expect_same_file("${WORK_DIR}/plain.json" "${WORK_DIR}/np2.json")
@@ -120,17 +122,20 @@ elseif(MODE STREQUAL "demo")
   expect_same_tree("${WORK_DIR}/plain/out" "${WORK_DIR}/np2/out")
   expect_ranks("${WORK_DIR}/np2/out/run_info.json" 2)
 elseif(MODE STREQUAL "validate")
-  # A campaign of the first 6 measurements of the demo world (written by a plain run).
-  run_ok("${WORK_DIR}" "${WORK_DIR}/world.out" "${VCMM}" demo -o demo --trials 100 --threads 2)
-  file(READ "${WORK_DIR}/demo/world/campaign.json" campaign)
+  # A campaign of the first 6 measurements of the world the plain run of MODE=demo wrote
+  # (-DWORLD=…/world, a CTest fixture).
+  if(NOT DEFINED WORLD OR NOT EXISTS "${WORLD}/campaign.json")
+    message(FATAL_ERROR "MODE=validate needs -DWORLD=<the demo's world directory>; got '${WORLD}'")
+  endif()
+  file(READ "${WORLD}/campaign.json" campaign)
   string(JSON count LENGTH "${campaign}" measurements)
   foreach(i RANGE ${count})
     if(i GREATER_EQUAL 6 AND i LESS count)
       string(JSON campaign REMOVE "${campaign}" measurements 6)
     endif()
   endforeach()
-  file(WRITE "${WORK_DIR}/demo/world/small.json" "${campaign}")
-  set(args validate "${WORK_DIR}/demo/world/small.json" -o out --threads 1)
+  file(WRITE "${WORLD}/small.json" "${campaign}")  # beside it: its paths are relative
+  set(args validate "${WORLD}/small.json" -o out --threads 1)
   run_ok("${WORK_DIR}/plain" "${WORK_DIR}/plain.out" "${VCMM}" ${args})
   run_ok("${WORK_DIR}/np2" "${WORK_DIR}/np2.out" ${mpirun} -np 2 "${VCMM}" ${args})
   expect_same_tree("${WORK_DIR}/plain/out" "${WORK_DIR}/np2/out")

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "commands.h"
+#include "processes.h"
 #include "vcmm/errormodel/atomic_file.h"
 #include "vcmm/geometry/point.h"
 #include "vcmm/uncertainty/errors.h"
@@ -27,10 +28,11 @@ namespace {
 std::atomic<bool> g_interrupted{false};
 using Handler = void (*)(int);
 Handler g_previous = SIG_DFL;
+Handler g_previous_usr1 = SIG_DFL;
 
-extern "C" void on_sigint(int) {
+extern "C" void on_sigint(int signal) {
   g_interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+  std::signal(signal, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
 
 }  // namespace
@@ -38,8 +40,14 @@ extern "C" void on_sigint(int) {
 InterruptGuard::InterruptGuard() {
   g_interrupted.store(false);
   g_previous = std::signal(SIGINT, on_sigint);
+  // Under mpirun, Ctrl-C ends the job (Open MPI sends SIGTERM, then SIGKILL), but SIGUSR1 sent
+  // to mpirun reaches every process: the clean stop there (docs/mpi.md).
+  if (process_group() != nullptr) g_previous_usr1 = std::signal(SIGUSR1, on_sigint);
 }
-InterruptGuard::~InterruptGuard() { std::signal(SIGINT, g_previous); }
+InterruptGuard::~InterruptGuard() {
+  std::signal(SIGINT, g_previous);
+  if (process_group() != nullptr) std::signal(SIGUSR1, g_previous_usr1);
+}
 const std::atomic<bool>* InterruptGuard::flag() const { return &g_interrupted; }
 bool InterruptGuard::interrupted() const { return g_interrupted.load(); }
 

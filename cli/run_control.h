@@ -10,7 +10,8 @@
 
 namespace vcmm::cli {
 
-/// Installs the SIGINT handler for its lifetime (restores the previous one on destruction).
+/// Installs the SIGINT handler for its lifetime (restores the previous one on destruction);
+/// in an MPI job (cli/processes.h) SIGUSR1 too, which mpirun forwards to every process.
 class InterruptGuard {
  public:
   InterruptGuard();

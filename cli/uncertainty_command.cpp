@@ -17,6 +17,7 @@
 #include "atomic_file.h"
 #include "commands.h"
 #include "option_values.h"
+#include "processes.h"
 #include "run_control.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/measurement.h"
@@ -88,7 +89,8 @@ int run_uncertainty(const UncertaintyOptions& o) {
     check_trials_for_coverage(o.adaptive_tolerance_um > 0.0 ? 0 : options.monte_carlo.trials,
                               o.coverage);
     options.monte_carlo.seed = o.seed;
-    options.monte_carlo.threads = o.threads;
+    options.monte_carlo.threads = threads_per_process(o.threads);
+    options.monte_carlo.process_group = process_group();  // null unless under mpirun
     options.monte_carlo.coverage_probability = o.coverage;
     if (o.adaptive_tolerance_um > 0.0) {
       uncertainty::AdaptiveOptions adaptive;
@@ -96,6 +98,7 @@ int run_uncertainty(const UncertaintyOptions& o) {
       options.adaptive = adaptive;
     }
     progress_mode = progress_mode_from_string(o.progress);
+    if (!is_output_process()) progress_mode = ProgressMode::never;
     options.roundness_bias = *va::roundness_bias_treatment_from_string(o.bias_treatment);
     options.shrinkage.pilot_trials = o.pilot_trials;
     options.shrinkage.surrogate_trials = o.surrogate_trials;
@@ -106,8 +109,9 @@ int run_uncertainty(const UncertaintyOptions& o) {
     return kUsage;
   }
   try {
-    if (!o.output.empty()) check_output_path(o.output);  // before minutes of Monte Carlo
-    if (!o.samples.empty()) check_output_path(o.samples);
+    // Before minutes of Monte Carlo; only the output process writes (docs/mpi.md).
+    if (!o.output.empty() && is_output_process()) check_output_path(o.output);
+    if (!o.samples.empty() && is_output_process()) check_output_path(o.samples);
     const em::DigitalModel model = em::read_digital_model_file(o.model);
     const em::Measurement measured = va::read_measurement_file(o.points, setup);
     options.provenance = {{"model_file", o.model},
@@ -124,6 +128,7 @@ int run_uncertainty(const UncertaintyOptions& o) {
         va::evaluate_ring_uncertainty(model, measured, options);
     bar.finish();
     const bool cancelled = result.monte_carlo.status == uncertainty::RunStatus::cancelled;
+    if (!is_output_process()) return cancelled ? kInterrupted : kOk;  // rank 0 reports
     const std::string report = o.json ? va::ring_uncertainty_json(result, options)
                                       : va::ring_uncertainty_text(result, options);
     // An interrupted run reports what it did, but never writes files that look finished.
@@ -201,7 +206,8 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
   cmd->add_option("--seed", opts->seed, "seed: fixes every number, whatever the thread count")
       ->check(unsigned_64())
       ->default_val(1);
-  cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
+  cmd->add_option("--threads", opts->threads, "worker threads per process (default: all cores; under mpirun the node's cores "
+                  "shared among its processes)")
       ->check(thread_count())
       ->default_val(0);
   cmd->add_option("--reference", opts->reference, "reference circle of RONt: MZ, MI, LS or MC")

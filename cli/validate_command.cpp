@@ -19,6 +19,7 @@
 
 #include "commands.h"
 #include "option_values.h"
+#include "processes.h"
 #include "run_control.h"
 #include "vcmm/geometry/text_file.h"
 #include "vcmm/errormodel/digital_model.h"
@@ -88,10 +89,12 @@ int run_campaign_cli(const va::Campaign& campaign, const std::string& out_dir,
                      std::map<std::string, va::RingMeasurands> truth, const char* name,
                      std::map<std::string, std::string> provenance) {
   InterruptGuard interrupt;
-  const ProgressMode mode = progress_mode_from_string(o.progress);
+  const bool output = is_output_process();  // only rank 0 writes and reports (docs/mpi.md)
+  const ProgressMode mode = output ? progress_mode_from_string(o.progress) : ProgressMode::never;
   std::unique_ptr<ProgressBar> bar;
   va::CampaignRunOptions options;
-  options.threads = o.threads;
+  options.threads = threads_per_process(o.threads);
+  options.process_group = process_group();
   options.denoised_treatment = o.denoised;
   options.truth = std::move(truth);
   options.cancel = interrupt.flag();
@@ -99,6 +102,7 @@ int run_campaign_cli(const va::Campaign& campaign, const std::string& out_dir,
   options.on_measurement = [&](std::size_t i, std::size_t n, const std::string& id,
                                bool resumed) {
     bar.reset();
+    if (!output) return;
     if (resumed) {
       std::fprintf(stderr, "[%zu/%zu] %s: done in an earlier run (loaded)\n", i + 1, n,
                    id.c_str());
@@ -112,6 +116,7 @@ int run_campaign_cli(const va::Campaign& campaign, const std::string& out_dir,
   };
   const va::CampaignOutcome outcome = va::run_campaign(campaign, out_dir, options);
   bar.reset();
+  if (!output) return outcome.cancelled ? kInterrupted : kOk;
   if (outcome.cancelled) {
     std::fprintf(stderr,
                  "vcmm %s: interrupted after %zu finished measurement(s); they are kept in %s/"
@@ -191,13 +196,6 @@ int run_demo(const CampaignCliOptions& o) {
     }
     const errormodel::DigitalModel model =
         errormodel::parse_digital_model(text, o.model.empty() ? "examples/cmm_model.json" : o.model);
-    va::DemoWorldOptions wo;
-    wo.seed = o.world_seed;
-    wo.form_scale = o.form_scale;
-    std::fprintf(stderr, "vcmm demo: building the ground-truth world (seed %llu, form x%s, %s)\n",
-                 static_cast<unsigned long long>(wo.seed), std::to_string(o.form_scale).c_str(),
-                 model_name.c_str());
-    const va::DemoWorld world = va::make_demo_world(model, wo);
     va::EvaluationSettings ev;
     ev.trials = o.trials;
     ev.seed = o.seed;
@@ -206,11 +204,25 @@ int run_demo(const CampaignCliOptions& o) {
     ev.bias_treatment = *va::roundness_bias_treatment_from_string(o.bias_treatment);
     apply_budget_options(o, ev, "--trials");  // checked above
     const std::filesystem::path world_dir = std::filesystem::path(o.output) / "world";
-    auto truth = va::write_demo_campaign(world, text, ev, world_dir);
+    std::map<std::string, va::RingMeasurands> truth;
+    if (is_output_process()) {  // under mpirun the others read the world rank 0 wrote
+      va::DemoWorldOptions wo;
+      wo.seed = o.world_seed;
+      wo.form_scale = o.form_scale;
+      std::fprintf(stderr,
+                   "vcmm demo: building the ground-truth world (seed %llu, form x%s, %s)\n",
+                   static_cast<unsigned long long>(wo.seed), std::to_string(o.form_scale).c_str(),
+                   model_name.c_str());
+      const va::DemoWorld world = va::make_demo_world(model, wo);
+      truth = va::write_demo_campaign(world, text, ev, world_dir);
+    }
+    uncertainty::any_process(process_group(), false);  // the world is on disk for every rank
     const va::Campaign campaign = va::read_campaign_file(world_dir / "campaign.json");
-    std::fprintf(stderr, "vcmm demo: %zu measurements, %llu trials each, %s reference circle\n",
-                 campaign.measurements.size(), static_cast<unsigned long long>(o.trials),
-                 std::string(va::to_string(ev.reference_circle)).c_str());
+    if (is_output_process()) {
+      std::fprintf(stderr, "vcmm demo: %zu measurements, %llu trials each, %s reference circle\n",
+                   campaign.measurements.size(), static_cast<unsigned long long>(o.trials),
+                   std::string(va::to_string(ev.reference_circle)).c_str());
+    }
     return run_campaign_cli(
         campaign, o.output, o, std::move(truth), "demo",
         {{"command", "vcmm demo" + (o.model.empty() ? std::string() : " --model " + o.model) +
@@ -228,7 +240,9 @@ int run_demo(const CampaignCliOptions& o) {
 void add_common(CLI::App* cmd, CampaignCliOptions& o) {
   cmd->add_option("-o,--output", o.output, "output directory (created; reruns resume)")
       ->required();
-  cmd->add_option("--threads", o.threads, "Monte Carlo threads (default: all cores)")
+  cmd->add_option("--threads", o.threads,
+                  "Monte Carlo threads per process (default: all cores; under mpirun the "
+                  "node's cores shared among its processes)")
       ->check(thread_count())
       ->default_val(0);
   cmd->add_flag("--denoised", o.denoised,

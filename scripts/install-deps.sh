@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   librandom123-dev
   python3 python3-dev python3-matplotlib python3-numpy python3-pytest pybind11-dev
+  openmpi-bin libopenmpi-dev  # optional: the vcmm-mpi command and its tests (docs/mpi.md)
 )
 
 missing=()

@@ -341,7 +341,9 @@ void bind_results(py::module_& m) {
         return out;
       })
       .def_readonly("wall_seconds", &un::MonteCarloResult::wall_seconds)
-      .def_readonly("threads_used", &un::MonteCarloResult::threads_used);
+      .def_readonly("threads_used", &un::MonteCarloResult::threads_used)
+      .def_readonly("ranks", &un::MonteCarloResult::ranks,
+                    "processes the trials were spread over (1 from Python; docs/mpi.md)");
 
   py::class_<UncertaintyRun>(m, "RingUncertaintyResult")
       .def_property_readonly("best_estimate", [](const UncertaintyRun& r) { return r.result.best_estimate; })

@@ -287,10 +287,12 @@ def test_uncertainty_seed_reproducible_whatever_the_threads():
     assert a.roundness.corrected == b.roundness.corrected
     assert not np.array_equal(a.samples, c.samples)
     assert a.monte_carlo.status == "completed"
+    assert a.monte_carlo.ranks == 1  # one process (MPI only through vcmm-mpi, docs/mpi.md)
     assert a.diameter.estimate == a.estimate_diameter
     assert a.samples[:, 0].mean() == pytest.approx(a.diameter.monte_carlo_mean, rel=1e-12)
     report = json.loads(a.json())
     assert report["schema"] == "vcmm.uncertainty_result"
+    assert report["monte_carlo"]["ranks"] == 1
     assert "diameter" in a.table()
 
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "vcmm/uncertainty/monte_carlo.h"
+#include "varied_experiment.h"
 
 namespace {
 
@@ -47,18 +48,7 @@ double quantile_sd(double p, double density, std::uint64_t m) {
   return std::sqrt(p * (1.0 - p) / static_cast<double>(m)) / density;
 }
 
-// An experiment that uses a trial-dependent number of normals and uniforms (so a mix-up of
-// streams or slots between threads cannot go unnoticed): three measurands.
-const Experiment kVariedExperiment = [](RandomStream& rng, std::span<double> y) {
-  const auto n = static_cast<std::size_t>(1 + rng.next_u64() % 40);
-  double normals[40];
-  rng.fill_standard_normal({normals, n});
-  double sum = 0.0;
-  for (std::size_t i = 0; i < n; ++i) sum += normals[i];
-  y[0] = sum;
-  y[1] = rng.uniform();
-  y[2] = static_cast<double>(n);
-};
+using vcmm::test::kVariedExperiment;
 
 TEST(MonteCarlo, LinearModelMeanUncertaintyIntervalAndCorrelation) {
   // Y = a X1 + b X2, X1 ~ N(1, 0.1²), X2 ~ N(0.5, 0.2²), a = 2, b = −3: E Y = 0.5,

@@ -11,11 +11,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
+#include "support/fake_process_group.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/validation/demo_world.h"
 
@@ -150,6 +154,52 @@ TEST_F(CampaignRun, AnInterruptedRunResumesToTheSameTable) {
   EXPECT_EQ(second.computed, 46u);
   for (const char* f : {"results.csv", "summary.csv", "treatments.csv", "results.json"})
     EXPECT_EQ(slurp(root_ / "full" / f), slurp(root_ / "resumed" / f)) << f;
+}
+
+TEST_F(CampaignRun, SpreadOverProcessesOnlyRankZeroWritesTheSameFilesAndDecidesResume) {
+  // Two simulated processes (threads, tests/support/fake_process_group.h), each given its own
+  // output directory: rank 0's must hold the files of a single-process run, byte for byte
+  // (but for the run's own facts), rank 1's must never be created.
+  Campaign small = campaign_;
+  small.measurements.clear();  // the first two scanning and the first two touch measurements
+  std::map<em::ProbingMode, int> taken;
+  for (const auto& m : campaign_.measurements)
+    if (taken[m.setup.mode]++ < 2) small.measurements.push_back(m);
+  ASSERT_EQ(small.measurements.size(), 4u);
+  const std::string touch_id = small.measurements.back().id;
+  CampaignRunOptions o;
+  o.truth = truth_;
+  o.threads = 2;
+  run_campaign(small, root_ / "single", o);
+  const auto spread = [&](std::size_t expect_resumed) {
+    std::string violations;
+    const auto outcomes = test::run_as_processes<CampaignOutcome>(
+        2,
+        [&](uncertainty::ProcessGroup& group) {
+          CampaignRunOptions p = o;
+          p.threads = 1;
+          p.process_group = &group;
+          return run_campaign(small, root_ / ("rank" + std::to_string(group.rank())), p);
+        },
+        &violations);
+    EXPECT_EQ(violations, "");
+    for (const auto& outcome : outcomes) {
+      ASSERT_FALSE(outcome.error);
+      EXPECT_EQ(outcome.value.resumed, expect_resumed);
+    }
+    EXPECT_FALSE(fs::exists(root_ / "rank1"));
+    const std::vector<std::string> files{
+        "results.csv", "summary.csv", "treatments.csv", "results.json", "summary.json",
+        "samples/" + small.measurements[0].id + ".csv", "samples/" + touch_id + ".csv",
+        "residuals/" + touch_id + ".csv"};
+    for (const std::string& f : files)
+      EXPECT_EQ(slurp(root_ / "single" / f), slurp(root_ / "rank0" / f)) << f;
+    const auto info = nlohmann::json::parse(slurp(root_ / "rank0" / "run_info.json"));
+    EXPECT_EQ(info.at("monte_carlo").at("ranks"), 2);
+    EXPECT_EQ(info.at("monte_carlo").at("threads"), 1);
+  };
+  spread(0);
+  spread(4);  // rank 0 finds every measurement done; rank 1, seeing no files, follows it
 }
 
 TEST_F(CampaignRun, AChangedInputIsRecomputedNotResumed) {

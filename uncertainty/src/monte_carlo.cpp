@@ -23,9 +23,11 @@
 #include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 
@@ -45,6 +47,11 @@ void validate_common(std::size_t q, const MonteCarloOptions& options, const char
   if (!(options.coverage_probability > 0.0 && options.coverage_probability < 1.0)) {
     throw InvalidInput(std::string(caller) + ": coverage_probability must be in (0, 1); got " +
                        format_double(options.coverage_probability));
+  }
+  if (const ProcessGroup* g = options.process_group;
+      g != nullptr && (g->size() == 0 || g->rank() >= g->size())) {
+    throw InvalidInput(std::string(caller) + ": the process group must have rank < size; got rank " +
+                       std::to_string(g->rank()) + " of " + std::to_string(g->size()));
   }
   if (options.threads > kMaxThreads) {
     throw InvalidInput(std::string(caller) + ": threads must be <= " + std::to_string(kMaxThreads) +
@@ -102,28 +109,43 @@ struct RangeOutcome {
   bool cancelled = false;       ///< the cancel flag stopped the range before its end
 };
 
-/// Runs ranges of trials on the workers; keeps the count of trials done before the current
-/// range for progress reports.
+/// Runs ranges of trials on the workers — of this process alone, or spread over the processes
+/// of options.process_group — and keeps the count of trials done before the current range for
+/// progress reports.
 class TrialRunner {
  public:
   TrialRunner(const Experiments& experiments, std::size_t q, const MonteCarloOptions& options,
               std::uint64_t planned, const char* caller)
-      : experiments_(experiments), q_(q), options_(options), planned_(planned), caller_(caller) {}
+      : experiments_(experiments),
+        q_(q),
+        options_(options),
+        group_(options.process_group != nullptr && options.process_group->size() > 1
+                   ? options.process_group
+                   : nullptr),
+        progress_(group_ == nullptr || group_->rank() == 0 ? options.progress : nullptr),
+        planned_(planned),
+        caller_(caller) {}
 
-  /// Runs trials [begin, end); trial t writes samples[(t − begin)·q …]. Throws
-  /// ExperimentError for the lowest failing trial.
+  /// Runs trials [begin, end); trial t writes samples[(t − begin)·q …] (on every process when
+  /// spread). Throws ExperimentError for the lowest failing trial (the same on every process).
   RangeOutcome run(std::uint64_t begin, std::uint64_t end, double* samples);
 
   std::uint64_t done_before() const { return done_before_; }
 
  private:
   struct Shared;
+  /// Runs [begin, end) on this process's workers; progress counts its trials × `scale`.
+  RangeOutcome run_local(std::uint64_t begin, std::uint64_t end, double* samples,
+                         std::uint64_t scale);
+  RangeOutcome run_spread(std::uint64_t begin, std::uint64_t end, double* samples);
   void work(Shared& s, unsigned worker) const;
   [[noreturn]] void throw_error(const Shared& s) const;
 
   const Experiments& experiments_;
   std::size_t q_;
   const MonteCarloOptions& options_;
+  ProcessGroup* group_;  // null unless spread over two or more processes
+  std::function<void(std::uint64_t, std::uint64_t)> progress_;  // rank 0's only
   std::uint64_t planned_;
   const char* caller_;
   std::uint64_t done_before_ = 0;
@@ -219,6 +241,15 @@ void TrialRunner::throw_error(const Shared& s) const {
 }
 
 RangeOutcome TrialRunner::run(std::uint64_t begin, std::uint64_t end, double* samples) {
+  const RangeOutcome out =
+      group_ != nullptr ? run_spread(begin, end, samples) : run_local(begin, end, samples, 1);
+  done_before_ += out.completed;
+  if (progress_) progress_(done_before_, planned_);
+  return out;
+}
+
+RangeOutcome TrialRunner::run_local(std::uint64_t begin, std::uint64_t end, double* samples,
+                                    std::uint64_t scale) {
   Shared s;
   s.begin = begin;
   s.end = end;
@@ -232,7 +263,7 @@ RangeOutcome TrialRunner::run(std::uint64_t begin, std::uint64_t end, double* sa
   s.chunks = (n + s.chunk - 1) / s.chunk;
   s.chunk_completed.assign(s.chunks, 0);
 
-  const bool monitor = static_cast<bool>(options_.progress);
+  const bool monitor = static_cast<bool>(progress_);
   std::vector<std::thread> threads;
   std::exception_ptr monitor_error;
   auto worker_main = [this, &s](unsigned w) {
@@ -253,7 +284,7 @@ RangeOutcome TrialRunner::run(std::uint64_t begin, std::uint64_t end, double* sa
       while (!s.active_cv.wait_for(lock, std::chrono::milliseconds(100),
                                    [&s] { return s.active == 0; })) {
         lock.unlock();
-        options_.progress(done_before_ + s.done.load(std::memory_order_relaxed), planned_);
+        progress_(done_before_ + scale * s.done.load(std::memory_order_relaxed), planned_);
         lock.lock();
       }
     } else {
@@ -275,8 +306,68 @@ RangeOutcome TrialRunner::run(std::uint64_t begin, std::uint64_t end, double* sa
     if (s.chunk_completed[c] != size) break;
   }
   out.cancelled = out.completed < n;
-  done_before_ += out.completed;
-  if (monitor) options_.progress(done_before_, planned_);
+  return out;
+}
+
+// Spread over the processes: each runs its part, then they exchange (trials done, failure) per
+// part so that all decide alike, then the samples. The lowest failing trial is in the first
+// part that reports a failure (parts are in trial order and each finds its own lowest); the
+// process that owns it rethrows its exception, every other one repeats that one trial — the
+// experiment being a deterministic function of its stream, it fails the same way — so every
+// process throws the same ExperimentError (message, trial, nested exception type) and none is
+// left waiting in an exchange.
+RangeOutcome TrialRunner::run_spread(std::uint64_t begin, std::uint64_t end, double* samples) {
+  enum : std::uint64_t { kOk = 0, kTrialFailed = 1, kOtherFailure = 2 };
+  const unsigned size = group_->size(), me = group_->rank();
+  const TrialPart mine = trial_part(begin, end, me, size);
+  RangeOutcome local;
+  std::exception_ptr error;
+  std::array<std::uint64_t, 3> status{0, kNoError, kOk};  // completed, failing trial, kind
+  try {
+    local = run_local(mine.first, mine.last, samples + (mine.first - begin) * q_, size);
+    status[0] = local.completed;
+  } catch (const ExperimentError& e) {
+    error = std::current_exception();
+    status[1] = e.trial();
+    status[2] = kTrialFailed;
+  } catch (...) {  // the progress callback threw, or threads could not be created
+    error = std::current_exception();
+    status[2] = kOtherFailure;
+  }
+  const std::vector<std::uint64_t> all = group_->all_gather(status);
+  for (unsigned r = 0; r < size; ++r) {
+    const std::uint64_t kind = all[3 * r + 2], trial = all[3 * r + 1];
+    if (kind == kOk) continue;
+    if (r == me) std::rethrow_exception(error);
+    if (kind == kOtherFailure) {
+      throw std::runtime_error(std::string(caller_) + ": process " + std::to_string(r) + " of " +
+                               std::to_string(size) + " failed (its error output says why)");
+    }
+    std::vector<double> slot(q_);
+    run_local(trial, trial + 1, slot.data(), 1);  // throws the same ExperimentError
+    throw ExperimentError(std::string(caller_) + ": trial " + std::to_string(trial) +
+                              " failed in process " + std::to_string(r) + " of " +
+                              std::to_string(size) + " but not when repeated in process " +
+                              std::to_string(me) + ": the experiment is not a deterministic "
+                              "function of its random stream",
+                          trial);
+  }
+  // The completed prefix: whole parts in rank order, then the done run of the first one cut
+  // short (a cancel stops each process at its own point).
+  std::vector<std::size_t> offsets(size), counts(size);
+  RangeOutcome out;
+  bool whole = true;
+  for (unsigned r = 0; r < size; ++r) {
+    const TrialPart part = trial_part(begin, end, r, size);
+    const std::uint64_t done = all[3 * r];
+    offsets[r] = static_cast<std::size_t>((part.first - begin) * q_);
+    counts[r] = static_cast<std::size_t>(done * q_);
+    if (whole) out.completed += done;
+    whole = whole && done == part.last - part.first;
+  }
+  group_->all_gather(std::span<double>(samples, static_cast<std::size_t>((end - begin) * q_)),
+                     offsets, counts);
+  out.cancelled = out.completed < end - begin;
   return out;
 }
 
@@ -318,6 +409,7 @@ MonteCarloResult run_fixed(const Experiments& experiments, std::size_t q,
   MonteCarloResult r;
   r.measurand_count = q;
   r.threads_used = experiments.size();
+  r.ranks = options.process_group != nullptr ? options.process_group->size() : 1;
   r.samples.resize(options.trials * q);
   TrialRunner runner(experiments, q, options, options.trials, caller);
   const RangeOutcome out = runner.run(0, options.trials, r.samples.data());
@@ -417,6 +509,7 @@ MonteCarloResult run_adaptive(const Experiments& experiments, std::size_t q,
   MonteCarloResult r;
   r.measurand_count = q;
   r.threads_used = experiments.size();
+  r.ranks = options.process_group != nullptr ? options.process_group->size() : 1;
   r.block_size = block;
   TrialRunner runner(experiments, q, options, a.max_trials, caller);
   // Per measurand: the block values of ȳ, u, y_low, y_high (JCGM 101 7.9.4).
@@ -424,8 +517,9 @@ MonteCarloResult run_adaptive(const Experiments& experiments, std::size_t q,
   std::vector<PooledMoments> pooled(q);
   r.status = RunStatus::not_converged;
   double projected_trials = 0.0;  // set when the tolerance is out of reach (below)
+  ProcessGroup* group = options.process_group;
   for (std::uint64_t h = 0;; ++h) {
-    if (options.cancel != nullptr && options.cancel->load()) {
+    if (any_process(group, options.cancel != nullptr && options.cancel->load())) {
       r.status = RunStatus::cancelled;
       break;
     }
@@ -465,7 +559,9 @@ MonteCarloResult run_adaptive(const Experiments& experiments, std::size_t q,
               : numerical_tolerance_from_digits(pooled[j].standard_deviation(), a.significant_digits);
       converged = converged && r.stability[j] <= r.numerical_tolerance[j];
     }
-    if (converged) {
+    // Every process computed the same numbers from the same samples; process 0's decision is
+    // taken by all all the same, so that no process can ever wait for a block the others skip.
+    if (decision_of_first(group, converged)) {
       r.status = RunStatus::converged;
       break;
     }
@@ -480,7 +576,7 @@ MonteCarloResult run_adaptive(const Experiments& experiments, std::size_t q,
         else if (r.stability[j] > 0.0)
           worst = std::numeric_limits<double>::infinity();
       const double needed = static_cast<double>(r.blocks) * worst * worst * static_cast<double>(block);
-      if (needed > 4.0 * static_cast<double>(a.max_trials)) {
+      if (decision_of_first(group, needed > 4.0 * static_cast<double>(a.max_trials))) {
         projected_trials = needed;
         break;
       }

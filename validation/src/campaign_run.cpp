@@ -21,6 +21,7 @@
 #include "vcmm/errormodel/atomic_file.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/uncertainty/errors.h"
+#include "vcmm/uncertainty/process_group.h"
 #include "vcmm/validation/comparison.h"
 #include "vcmm/validation/provenance.h"
 #include "vcmm/validation/ring_uncertainty_report.h"
@@ -620,10 +621,15 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                              const CampaignRunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   CampaignOutcome outcome;
-  ensure_dir(out_dir);
-  ensure_dir(out_dir / "measurements");
-  ensure_dir(out_dir / "samples");
-  ensure_dir(out_dir / "residuals");
+  uncertainty::ProcessGroup* const group = options.process_group;
+  const bool writer = group == nullptr || group->rank() == 0;  // the others never touch out_dir
+  if (writer) {
+    ensure_dir(out_dir);
+    ensure_dir(out_dir / "measurements");
+    ensure_dir(out_dir / "samples");
+    ensure_dir(out_dir / "residuals");
+  }
+  unsigned threads_used = options.threads;
 
   const std::string model_bytes = read_bytes(campaign.model_path);
   const em::DigitalModel parsed = em::parse_digital_model(model_bytes, campaign.model_path.string());
@@ -670,10 +676,12 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     const std::string fingerprint = fp.hex();
     const fs::path result_file = out_dir / "measurements" / (entry.id + ".json");
 
-    if (auto previous = load_previous(result_file, fingerprint)) {
+    // Resumed where process 0 finds a finished file (the others need not see out_dir).
+    auto previous = writer ? load_previous(result_file, fingerprint) : std::nullopt;
+    if (uncertainty::decision_of_first(group, previous.has_value())) {
       if (options.on_measurement)
         options.on_measurement(i, campaign.measurements.size(), entry.id, true);
-      outcome.measurements.push_back(std::move(*previous));
+      if (previous) outcome.measurements.push_back(std::move(*previous));
       ++outcome.resumed;
       continue;
     }
@@ -703,9 +711,11 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     uo.monte_carlo.coverage_probability = ev.coverage_probability;
     uo.monte_carlo.progress = options.progress;
     uo.monte_carlo.cancel = options.cancel;
+    uo.monte_carlo.process_group = group;
     uo.roundness_bias = ev.bias_treatment;
     uo.budget = budget;
     const RingUncertaintyResult a = evaluate_ring_uncertainty(model, measured, uo);
+    threads_used = a.monte_carlo.threads_used;
     if (a.monte_carlo.status == uncertainty::RunStatus::cancelled) {
       outcome.cancelled = true;
       break;
@@ -760,19 +770,23 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     score(m.diameter, ev.k);
     score(m.roundness, ev.k);
 
-    // Files of one measurement: one transaction, the outcome (the completion marker that
-    // resume looks for) renamed into place last.
+    // Files of one measurement (process 0's): one transaction, the outcome (the completion
+    // marker that resume looks for) renamed into place last.
     errormodel::OutputTransaction files;
-    files.stage((out_dir / "samples" / (entry.id + ".csv")).string(),
-                ring_samples_csv(a.monte_carlo));
-    files.stage((out_dir / "residuals" / (entry.id + ".csv")).string(),
-                residuals_csv(evaluate_ring_profile(ring_profile(a.best_estimate), evaluation)));
+    if (writer) {
+      files.stage((out_dir / "samples" / (entry.id + ".csv")).string(),
+                  ring_samples_csv(a.monte_carlo));
+      files.stage((out_dir / "residuals" / (entry.id + ".csv")).string(),
+                  residuals_csv(evaluate_ring_profile(ring_profile(a.best_estimate), evaluation)));
+    }
     m.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
     // Round-trip through the file's text so computed and resumed outcomes are identical.
     const std::string text = outcome_to_json(m).dump(1) + "\n";
-    files.stage(result_file.string(), text);
-    files.commit();
+    if (writer) {
+      files.stage(result_file.string(), text);
+      files.commit();
+    }
     MeasurementOutcome stored = outcome_from_json(json::parse(text));
     outcome.measurements.push_back(std::move(stored));
     ++outcome.computed;
@@ -781,7 +795,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
   }
   outcome.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (outcome.cancelled) return outcome;
+  if (outcome.cancelled || !writer) return outcome;
 
   outcome.summary = summarize_campaign(outcome.measurements);
   if (!options.truth.empty()) outcome.treatments = treatment_rows(outcome.measurements);
@@ -831,7 +845,10 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                {"kinematic_errors", ev.kinematics_corrected ? "corrected" : "uncertainty_only"},
                {"budget", ev.budget},
                {"budget_trials", budget ? json(budget_trials(*budget, ev.trials)) : json()},
-               {"wall_seconds_this_run", outcome.wall_seconds}};
+               {"wall_seconds_this_run", outcome.wall_seconds},
+               // How this run was spread (the numbers do not depend on it; docs/mpi.md).
+               {"monte_carlo", {{"ranks", group != nullptr ? group->size() : 1u},
+                                {"threads", threads_used}}}};
   info["vcmm_version"] = std::string(vcmm_version());
   info["git_revision"] = std::string(vcmm_revision());
   if (!campaign.model_path.empty())  // empty for campaigns built in code, not read from a file

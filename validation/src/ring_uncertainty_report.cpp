@@ -271,6 +271,7 @@ std::string ring_uncertainty_json(const RingUncertaintyResult& result,
   j["monte_carlo"] = {{"trials", mc.trials},
                       {"seed", options.monte_carlo.seed},
                       {"threads", mc.threads_used},
+                      {"ranks", mc.ranks},
                       {"status", std::string(uncertainty::to_string(mc.status))},
                       {"message", mc.message},
                       {"adaptive", options.adaptive.has_value()},
@@ -308,7 +309,8 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
   const auto& mc = result.monte_carlo;
   char line[256];
   os << "Monte Carlo (JCGM 101): " << mc.trials << " trials, seed " << options.monte_carlo.seed
-     << ", " << mc.threads_used << " thread(s), " << uncertainty::to_string(mc.status);
+     << ", " << (mc.ranks > 1 ? std::to_string(mc.ranks) + " processes x " : std::string())
+     << mc.threads_used << " thread(s), " << uncertainty::to_string(mc.status);
   if (!mc.message.empty() && mc.status != uncertainty::RunStatus::completed)
     os << " (" << mc.message << ")";
   std::snprintf(line, sizeof line, ", %.2f s\n", mc.wall_seconds);

@@ -19,6 +19,12 @@
 // must be safe to call concurrently (no shared mutable state; keep per-call scratch in
 // thread_local storage or use the ExperimentFactory overloads, which create one experiment
 // per worker thread — e.g. one owning its scratch buffers).
+//
+// Processes: with MonteCarloOptions::process_group set (e.g. the ranks of an MPI job), every
+// range of trials is cut into contiguous parts, one per process, each run on that process's
+// threads, and the samples are gathered in trial order on every process (process_group.h).
+// Summaries, correlation and every adaptive decision are computed from the same array, so the
+// result is bit-identical for any number of processes and threads, on every process.
 #pragma once
 
 #include <atomic>
@@ -31,6 +37,7 @@
 #include <vector>
 
 #include "vcmm/uncertainty/errors.h"
+#include "vcmm/uncertainty/process_group.h"
 #include "vcmm/uncertainty/random_stream.h"
 #include "vcmm/uncertainty/statistics.h"
 
@@ -58,8 +65,16 @@ struct MonteCarloOptions {
   std::function<void(std::uint64_t done, std::uint64_t planned)> progress;
   /// When set and it becomes true, the run stops early; the result covers the completed
   /// PREFIX of trials 0..M_done−1 and says cancelled = true (status RunStatus::cancelled).
-  /// Workers look at it before each trial.
+  /// Workers look at it before each trial. Spread over processes: each process stops its own
+  /// part; the result is the prefix that all parts together completed, the same everywhere.
   const std::atomic<bool>* cancel = nullptr;
+  /// The processes the trials are spread over (process_group.h); null: this process alone.
+  /// Every process of the group must make the same run_… call with the same options (but
+  /// `threads`, `progress` and `cancel`, which are its own) and the same experiment. Progress
+  /// is reported on rank 0 only: trials done = those of the finished ranges + rank 0's own in
+  /// the current range × size() (parts differ by at most one trial). Each process holds all
+  /// the samples (8·q·M bytes).
+  ProcessGroup* process_group = nullptr;
 };
 
 struct AdaptiveOptions {   // JCGM 101 7.9
@@ -95,7 +110,8 @@ struct MonteCarloResult {
   std::vector<MeasurandSummary> summaries;
   std::vector<double> correlation;       ///< q×q row-major (statistics.h); empty with summaries
   double wall_seconds = 0;
-  unsigned threads_used = 0;
+  unsigned threads_used = 0;             ///< worker threads of this process
+  unsigned ranks = 1;                    ///< processes the trials were spread over
   // ---- adaptive runs only (zero / empty for fixed-M runs) ----
   std::uint64_t block_size = 0;          ///< B
   std::uint64_t blocks = 0;              ///< h: complete blocks run
@@ -111,11 +127,16 @@ struct MonteCarloResult {
 /// as ExperimentError (errors.h) with the original exception nested; likewise a measurand
 /// left NaN/±inf (naming trial and measurand). With an error at trial e every trial < e
 /// still runs and trials > e are skipped, so the reported trial is the lowest failing one
-/// for any thread count.
+/// for any thread count. Spread over processes, every process throws the same ExperimentError:
+/// the one whose part holds the lowest failing trial rethrows its own, the others repeat that
+/// trial and so fail alike (the experiment being a deterministic function of its stream); a
+/// failure that is not a trial's (the progress callback threw) reaches the other processes
+/// as std::runtime_error naming the process.
 /// Throws InvalidInput (nothing run) if the experiment is empty, measurand_count is 0,
 /// trials < minimum_sample_count(p) (11 for p = 0.95) or M·q overflows, p ∉ (0, 1), or
-/// threads > 1024. Cost: the experiment's, plus ~40 ns a trial for the engine
-/// (docs/performance.md), plus the summaries: O(q M log M) (a sort per measurand, measurands
+/// threads > 1024, or the process group's rank is not below its size. Cost: the
+/// experiment's, plus ~40 ns a trial for the engine (docs/performance.md), plus (spread) one
+/// gather of the samples, plus the summaries: O(q M log M) (a sort per measurand, measurands
 /// in parallel), O(q² M) for the correlation. Memory: 8·q·M bytes of samples.
 MonteCarloResult run_monte_carlo(const Experiment& experiment, std::size_t measurand_count,
                                  const MonteCarloOptions& options);
@@ -127,7 +148,8 @@ MonteCarloResult run_monte_carlo(const ExperimentFactory& factory, std::size_t m
 /// Adaptive procedure (JCGM 101 7.9): blocks of block_size trials (block h = trials
 /// [h·B, (h+1)·B)) until for every measurand twice the standard deviation of the block
 /// estimates of mean, u, and both ends of the probabilistically symmetric interval is ≤ δ
-/// (7.9.4 steps); the result pools all trials (7.9.4, last step). status converged / not_converged
+/// (7.9.4 steps); the result pools all trials (7.9.4, last step). Spread over processes, each
+/// block is split like a fixed run and every stop decision is process 0's, taken by all. status converged / not_converged
 /// (max_trials hit, or — from the third block on — the tolerance out of reach: 2s falls like
 /// 1/√h, and when h·(2s/δ)² blocks exceed four times max_trials the run stops at once, the
 /// message giving the projected number of trials) / cancelled. options.trials is ignored.

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "vcmm/errormodel/measurement.h"
+#include "vcmm/uncertainty/process_group.h"
 #include "vcmm/validation/campaign.h"
 #include "vcmm/validation/ring_experiment.h"
 #include "vcmm/validation/ring_uncertainty_budget.h"
@@ -108,7 +109,15 @@ struct TreatmentRow {
 };
 
 struct CampaignRunOptions {
-  unsigned threads = 0;  ///< Monte Carlo threads (0: all cores)
+  unsigned threads = 0;  ///< Monte Carlo threads of this process (0: all cores)
+  /// The processes every Monte Carlo run is spread over (uncertainty/process_group.h; e.g. an
+  /// MPI job, docs/mpi.md), or null for this process alone. Every process calls run_campaign
+  /// with the same campaign and reads the same input files; only process 0 touches
+  /// `output_dir` (creates it, resumes from it, writes every file) and its decision to resume a
+  /// measurement is taken by all. The files are bit-identical for any number of processes and
+  /// threads (run_info.json records both). On the other processes the outcome lists only the
+  /// measurements computed in this run.
+  uncertainty::ProcessGroup* process_group = nullptr;
   /// Run treatment (b) as well (one more Monte Carlo per measurement, on the denoised truth;
   /// needs a filter cut-off in the campaign). Off by default: the demo shows it biased.
   bool denoised_treatment = false;

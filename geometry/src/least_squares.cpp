@@ -342,11 +342,40 @@ constexpr double kMaxSpanMm = 1e50;
 
 void check_span(std::span<const Point2> points) {
   double x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
-  for (const Point2& p : points) {
-    x0 = std::min(x0, p.x);
-    x1 = std::max(x1, p.x);
-    y0 = std::min(y0, p.y);
-    y1 = std::max(y1, p.y);
+  std::size_t i = 0;
+  if constexpr (kLanes % 2 == 0) {
+    // The points as interleaved x, y doubles: a packet holds kLanes / 2 whole points, so
+    // lane-wise extremes are per coordinate (even lanes x, odd lanes y). Two packets an
+    // iteration (independent chains); min/max are exact, so the result is the scalar loop's.
+    static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
+    const double* p = reinterpret_cast<const double*>(points.data());
+    constexpr std::size_t per_step = kLanes;  // points per iteration (two packets)
+    if (points.size() >= per_step) {
+      Packet lo0 = simd::ploadu<Packet>(p), hi0 = lo0, lo1 = lo0, hi1 = lo0;
+      for (; i + per_step <= points.size(); i += per_step) {
+        const Packet a = simd::ploadu<Packet>(p + 2 * i);
+        const Packet b = simd::ploadu<Packet>(p + 2 * i + kLanes);
+        lo0 = simd::pmin(lo0, a);
+        hi0 = simd::pmax(hi0, a);
+        lo1 = simd::pmin(lo1, b);
+        hi1 = simd::pmax(hi1, b);
+      }
+      alignas(64) double lo[kLanes], hi[kLanes];
+      simd::pstoreu(lo, simd::pmin(lo0, lo1));
+      simd::pstoreu(hi, simd::pmax(hi0, hi1));
+      for (Eigen::Index k = 0; k < kLanes; k += 2) {
+        x0 = std::min(x0, lo[k]);
+        y0 = std::min(y0, lo[k + 1]);
+        x1 = std::max(x1, hi[k]);
+        y1 = std::max(y1, hi[k + 1]);
+      }
+    }
+  }
+  for (; i < points.size(); ++i) {
+    x0 = std::min(x0, points[i].x);
+    x1 = std::max(x1, points[i].x);
+    y0 = std::min(y0, points[i].y);
+    y1 = std::max(y1, points[i].y);
   }
   const double span = std::max(x1 - x0, y1 - y0);  // may be inf for ±1e308 data: refused
   if (span >= kMinSpanMm && span <= kMaxSpanMm) return;
@@ -493,48 +522,34 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
   double* uy = ws.y.data();
   double* e = ws.r.data();
 
-  // Pass 1: unit directions (stored for pass 2) and the sums of the GN step at the centre.
-  // Two packets an iteration into two sets of sums (halves the add-latency chains).
-  struct RaySums {
-    Packet w = simd::pset1<Packet>(0.0), ux = w, uy = w, uxw = w, uyw = w, uxx = w, uxy = w,
-           uyy = w;
-    Packet w_min = simd::pset1<Packet>(std::numeric_limits<double>::infinity());
-  };
-  const auto add_rays = [&](RaySums& a, Eigen::Index i) {
+  // Pass 1: unit directions (stored for pass 2) and the sums of the GN step at the centre
+  // (eight sums: one packet an iteration keeps them in registers).
+  Packet sw = simd::pset1<Packet>(0.0), sux = sw, suy = sw, suxw = sw, suyw = sw, suxx = sw,
+         suxy = sw, suyy = sw;
+  for (Eigen::Index i = 0; i < packed; i += kLanes) {
     const Packet inv = simd::ploadu<Packet>(inv_length + i);
     const Packet x = simd::pmul(simd::ploadu<Packet>(ray_x + i), inv);
     const Packet y = simd::pmul(simd::ploadu<Packet>(ray_y + i), inv);
     const Packet wi = simd::ploadu<Packet>(w + i);
     simd::pstoreu(ux + i, x);
     simd::pstoreu(uy + i, y);
-    a.w = simd::padd(a.w, wi);
-    a.w_min = simd::pmin(a.w_min, wi);
-    a.ux = simd::padd(a.ux, x);
-    a.uy = simd::padd(a.uy, y);
-    a.uxw = simd::pmadd(x, wi, a.uxw);
-    a.uyw = simd::pmadd(y, wi, a.uyw);
-    a.uxx = simd::pmadd(x, x, a.uxx);
-    a.uxy = simd::pmadd(x, y, a.uxy);
-    a.uyy = simd::pmadd(y, y, a.uyy);
-  };
-  RaySums r1, r2;
-  Eigen::Index i = 0;
-  for (; i + 2 * kLanes <= packed; i += 2 * kLanes) {
-    add_rays(r1, i);
-    add_rays(r2, i + kLanes);
+    sw = simd::padd(sw, wi);
+    sux = simd::padd(sux, x);
+    suy = simd::padd(suy, y);
+    suxw = simd::pmadd(x, wi, suxw);
+    suyw = simd::pmadd(y, wi, suyw);
+    suxx = simd::pmadd(x, x, suxx);
+    suxy = simd::pmadd(x, y, suxy);
+    suyy = simd::pmadd(y, y, suyy);
   }
-  if (i < packed) add_rays(r1, i);
-  const auto sum = [](Packet a, Packet b) { return simd::predux(simd::padd(a, b)); };
-  double s_w = sum(r1.w, r2.w), s_ux = sum(r1.ux, r2.ux), s_uy = sum(r1.uy, r2.uy);
-  double s_uxw = sum(r1.uxw, r2.uxw), s_uyw = sum(r1.uyw, r2.uyw);
-  double s_uxx = sum(r1.uxx, r2.uxx), s_uxy = sum(r1.uxy, r2.uxy), s_uyy = sum(r1.uyy, r2.uyy);
-  double w_min = simd::predux_min(simd::pmin(r1.w_min, r2.w_min));
-  for (i = packed; i < n; ++i) {
+  double s_w = simd::predux(sw), s_ux = simd::predux(sux), s_uy = simd::predux(suy);
+  double s_uxw = simd::predux(suxw), s_uyw = simd::predux(suyw);
+  double s_uxx = simd::predux(suxx), s_uxy = simd::predux(suxy), s_uyy = simd::predux(suyy);
+  for (Eigen::Index i = packed; i < n; ++i) {
     const double x = ray_x[i] * inv_length[i], y = ray_y[i] * inv_length[i];
     ux[i] = x;
     uy[i] = y;
     s_w += w[i];
-    w_min = std::min(w_min, w[i]);
     s_ux += x;
     s_uy += y;
     s_uxw += x * w[i];
@@ -551,11 +566,11 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
   if (!(det > 0.0) || !std::isfinite(det)) return std::nullopt;
   const double dx = (myy * bx - mxy * by) / det;
   const double dy = (mxx * by - mxy * bx) / det;
-  const double rho_min = radius + w_min;
-  if (!(rho_min > 0.0) || !(std::hypot(dx, dy) <= 0x1.0p-30 * rho_min)) return std::nullopt;
+  const double step = std::hypot(dx, dy);
+  if (!(step <= 0x1.0p-30 * radius)) return std::nullopt;
 
   // Pass 2: residuals about R, e_i = w_i − u_i·δ (the distance from c + δ minus R); two
-  // packets an iteration as above.
+  // packets an iteration into two sets of extremes and sums (halves the latency chains).
   const Packet pdx = simd::pset1<Packet>(dx), pdy = simd::pset1<Packet>(dy);
   struct ResidualSums {
     Packet max = simd::pset1<Packet>(-std::numeric_limits<double>::infinity());
@@ -574,14 +589,16 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
     a.ee = simd::pmadd(ei, ei, a.ee);
   };
   ResidualSums e1, e2;
-  for (i = 0; i + 2 * kLanes <= packed; i += 2 * kLanes) {
+  Eigen::Index i = 0;
+  for (; i + 2 * kLanes <= packed; i += 2 * kLanes) {
     add_residuals(e1, i);
     add_residuals(e2, i + kLanes);
   }
   if (i < packed) add_residuals(e1, i);
   double e_max = simd::predux_max(simd::pmax(e1.max, e2.max));
   double e_min = simd::predux_min(simd::pmin(e1.min, e2.min));
-  double s_e = sum(e1.e, e2.e), s_ee = sum(e1.ee, e2.ee);
+  double s_e = simd::predux(simd::padd(e1.e, e2.e));
+  double s_ee = simd::predux(simd::padd(e1.ee, e2.ee));
   for (i = packed; i < n; ++i) {
     const double ei = w[i] - (ux[i] * dx + uy[i] * dy);
     e[i] = ei;
@@ -590,6 +607,9 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
     s_e += ei;
     s_ee += ei * ei;
   }
+  // The exactness bound needs |δ| ≤ 2⁻³⁰ min_i (R + w_i); R + w_i ≥ R + e_min − |δ|.
+  const double rho_min = radius + e_min - step;
+  if (!(rho_min > 0.0) || !(step <= 0x1.0p-30 * rho_min)) return std::nullopt;
   const double ebar = s_e / nd;
   LeastSquaresCircle out;
   out.center = {center.x + dx, center.y + dy};

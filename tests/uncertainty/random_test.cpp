@@ -166,7 +166,8 @@ TEST(RandomStream, PinnedFirstValuesOfSeed1Stream0) {
 }
 
 TEST(RandomStream, BulkCallsGiveTheValuesOfSingleCalls) {
-  // Any mixture of bulk and single calls consumes the same word sequence in order.
+  // Any mixture of bulk and single calls consumes the same word sequence in order; fill_normal
+  // gives sigma times the values of fill_standard_normal.
   RandomStream single(42, 3), bulk(42, 3);
   RandomStream sizes(99, 0);  // random chunk sizes, 0 … ~600 (several refills)
   std::vector<double> buffer;
@@ -176,9 +177,15 @@ TEST(RandomStream, BulkCallsGiveTheValuesOfSingleCalls) {
     if (round % 3 == 0) {
       bulk.fill_uniform(buffer);
       for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(buffer[i], single.uniform()) << round;
-    } else {
+    } else if (round % 3 == 1) {
       bulk.fill_standard_normal(buffer);
       for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(buffer[i], single.standard_normal()) << round;
+    } else {
+      // fill_normal: the same normals times sigma, rounded once more (bit for bit).
+      const double sigma = 7e-4 * (1.0 + 0.01 * round);
+      bulk.fill_normal(buffer, sigma);
+      for (std::size_t i = 0; i < n; ++i)
+        ASSERT_EQ(buffer[i], single.standard_normal() * sigma) << round;
     }
     if (round % 7 == 0) {
       ASSERT_EQ(bulk.next_u64(), single.next_u64());

@@ -480,7 +480,9 @@ double RandomStream::standard_normal() {
 // The loop below runs at ~2.1 ns a value on the 2.6 GHz AVX-512 Xeon of docs/performance.md,
 // of which ~0.75 ns is Philox. An AVX-512 variant testing 8 words at once with two gathers
 // from the table was slower there (2.75 ns: gathers are slow on that CPU), so it was dropped.
-void RandomStream::fill_standard_normal(std::span<double> out) {
+// kScaled: each value times sigma as a separate rounding (the bits of scaling afterwards).
+template <bool kScaled>
+void RandomStream::fill_normal_values(std::span<double> out, double sigma) {
   const internal::FastEntry* table = internal::scaled_tables().entry.data();
   double* o = out.data();
   const std::size_t n = out.size();
@@ -494,15 +496,25 @@ void RandomStream::fill_standard_normal(std::span<double> out) {
       const internal::FastEntry& e = table[w[k] & 0x1ffu];
       const std::uint64_t a = w[k] >> 11;
       if (a >= e.accept_below) break;  // the slow path takes this word
-      o[i + k] = static_cast<double>(static_cast<std::int64_t>(a)) * e.x_scaled;
+      const double z = static_cast<double>(static_cast<std::int64_t>(a)) * e.x_scaled;
+      o[i + k] = kScaled ? z * sigma : z;
     }
     position_ += k;
     i += k;
     if (k < m) {
       const std::uint64_t word = words_[position_++];
-      o[i++] = normal_slow_path(word);
+      const double z = normal_slow_path(word);
+      o[i++] = kScaled ? z * sigma : z;
     }
   }
+}
+
+void RandomStream::fill_standard_normal(std::span<double> out) {
+  fill_normal_values<false>(out, 1.0);
+}
+
+void RandomStream::fill_normal(std::span<double> out, double sigma) {
+  fill_normal_values<true>(out, sigma);
 }
 
 void RandomStream::fill_uniform(std::span<double> out) {

@@ -80,10 +80,10 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
 /// *filtered_least_squares. The filter builds each output point on its input ray from the
 /// given centre, so that circle takes one Gauss-Newton step from the centre, without square
 /// roots or divisions (exact to 2⁻⁶⁰ of the radius; least_squares.cpp, "Points on rays"):
-/// ~3 µs instead of a ~20 µs fit at n = 3600. Against least_squares_circle(out.points): the
-/// same circle to ~1e-14 mm (the rounding of the output points; iterations = 1), and the same
-/// contacts except between residuals equal to that level.
-/// (tests/geometry/gaussian_filter_trial_test.cpp). `out.points` equals the other overload's
+/// two light passes instead of a ~20 µs fit at n = 3600. Against
+/// least_squares_circle(out.points): the same circle to ~1e-14 mm (the rounding of the output
+/// points; iterations = 1), and the same contacts except between residuals equal to that
+/// level (tests/geometry/gaussian_filter_trial_test.cpp). `out.points` equals the other overload's
 /// output bit for bit. Preconditions and exceptions: as above.
 void gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
                                const LeastSquaresCircle& least_squares, FilteredProfile& out,

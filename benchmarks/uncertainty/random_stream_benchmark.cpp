@@ -3,6 +3,9 @@
 //   BM_FillStandardNormal/n  fill_standard_normal of n values from a fresh RandomStream (one
 //                            per iteration, as one trial does): ns per normal. n = 14 400 is
 //                            one 3 600-point ring's roughness + noise draws. Target ≤ ~2 ns.
+//   BM_FillNormalScaled/k    14 400 normals times σ: k = 0 fill_standard_normal then a
+//                            second pass multiplying by σ (as the error draw did), k = 1
+//                            fill_normal(out, σ) (the same bits in one pass).
 //   BM_FillUniform/n         the same for fill_uniform.
 //   BM_StandardNormalSingle  standard_normal() one call at a time (same values as the bulk
 //                            call; shows the cost of the per-call buffer check).
@@ -40,6 +43,25 @@ void BM_FillStandardNormal(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 BENCHMARK(BM_FillStandardNormal)->Arg(16)->Arg(1'440)->Arg(14'400)->Arg(144'000);
+
+void BM_FillNormalScaled(benchmark::State& state) {
+  std::vector<double> out(14'400);
+  const double sigma = 7e-4;
+  std::uint64_t trial = 0;
+  for (auto _ : state) {
+    RandomStream rng(1, trial++);
+    if (state.range(0) == 0) {
+      rng.fill_standard_normal(out);
+      for (double& v : out) v *= sigma;
+    } else {
+      rng.fill_normal(out, sigma);
+    }
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * 14'400);
+}
+BENCHMARK(BM_FillNormalScaled)->Arg(0)->Arg(1);
 
 void BM_FillUniform(benchmark::State& state) {
   std::vector<double> out(static_cast<std::size_t>(state.range(0)));

@@ -2,9 +2,9 @@
 // on this 2-core machine): a 3600-point scanning measurement (and a 360-point touch-trigger
 // one) of the 171 mm ring at the centre of the volume, all five error sources of
 // examples/cmm_model.json, LS diameter and RONt about the MZ circle after the 50 UPR Gaussian
-// filter. BM_RingMonteCarlo runs the whole engine (threads 1 and 2; items/s = trials/s) with
-// the study's bias treatment only (one run); BM_RingTrial one trial on one thread (no engine),
-// for the cost split. BM_SurrogateTrial is one trial of the shrinkage treatment's second run
+// filter (the second argument picks the reference: 0 MZ, 1 MI, 2 LS; label). BM_RingMonteCarlo
+// runs the whole engine (threads 1 and 2; items/s = trials/s) with the study's bias treatment
+// only (one run); BM_RingTrial one trial on one thread (no engine), for the cost split. BM_SurrogateTrial is one trial of the shrinkage treatment's second run
 // (simulate, LS, filter + RONt, harmonics, shrink + RONt; MZ and MI), and BM_RingShrinkage the
 // whole default evaluation (first run, pilot of 400, second run) of M = 10⁴ trials, as one
 // measurement of the demo costs.
@@ -43,11 +43,31 @@ em::Measurement measured_ring(Eigen::Index n) {
   return em::simulate(truth, example_model(), em::draw_errors(example_model(), truth, rng));
 }
 
+va::ReferenceCircle circle_of(std::int64_t code) {
+  switch (code) {
+    case 0: return va::ReferenceCircle::minimum_zone;
+    case 1: return va::ReferenceCircle::maximum_inscribed;
+    default: return va::ReferenceCircle::least_squares;
+  }
+}
+
+const char* label_of(va::ReferenceCircle c) {
+  switch (c) {
+    case va::ReferenceCircle::minimum_zone: return "MZ";
+    case va::ReferenceCircle::maximum_inscribed: return "MI";
+    case va::ReferenceCircle::least_squares: return "LS";
+    case va::ReferenceCircle::minimum_circumscribed: return "MC";
+  }
+  return "?";
+}
+
 void BM_RingTrial(benchmark::State& state) {
   const em::Measurement best =
       em::correct(measured_ring(state.range(0)), example_model());
+  va::RingEvaluationOptions e;
+  e.reference = circle_of(state.range(1));
   va::RingTrial trial(example_model(),
-                      std::make_shared<const em::PreparedMeasurement>(best, example_model()), {},
+                      std::make_shared<const em::PreparedMeasurement>(best, example_model()), e,
                       em::Stages::all());
   double out[2];
   std::uint64_t t = 0;
@@ -57,13 +77,20 @@ void BM_RingTrial(benchmark::State& state) {
     benchmark::DoNotOptimize(out);
   }
   state.SetItemsProcessed(state.iterations());
+  state.SetLabel(label_of(e.reference));
 }
-BENCHMARK(BM_RingTrial)->Arg(3600)->Arg(360)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RingTrial)
+    ->Args({3600, 0})
+    ->Args({3600, 1})
+    ->Args({3600, 2})
+    ->Args({360, 0})
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_RingMonteCarlo(benchmark::State& state) {
   const em::Measurement measured = measured_ring(state.range(0));
   va::RingUncertaintyOptions o;
   o.roundness_bias = va::RoundnessBiasTreatment::paper;  // one run: trials/s of the engine
+  o.evaluation.reference = circle_of(state.range(2));
   o.monte_carlo.trials = 2000;
   o.monte_carlo.threads = static_cast<unsigned>(state.range(1));
   for (auto _ : state) {
@@ -71,17 +98,17 @@ void BM_RingMonteCarlo(benchmark::State& state) {
     benchmark::DoNotOptimize(r.monte_carlo.samples.data());
   }
   state.SetItemsProcessed(state.iterations() * 2000);
+  state.SetLabel(label_of(o.evaluation.reference));
 }
 BENCHMARK(BM_RingMonteCarlo)
-    ->Args({3600, 1})
-    ->Args({3600, 2})
-    ->Args({360, 2})
+    ->Args({3600, 1, 0})
+    ->Args({3600, 2, 0})
+    ->Args({3600, 1, 2})
+    ->Args({3600, 2, 2})
+    ->Args({3600, 2, 1})
+    ->Args({360, 2, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-
-va::ReferenceCircle circle_of(std::int64_t code) {
-  return code == 0 ? va::ReferenceCircle::minimum_zone : va::ReferenceCircle::maximum_inscribed;
-}
 
 void BM_SurrogateTrial(benchmark::State& state) {
   const em::Measurement best = em::correct(measured_ring(state.range(0)), example_model());
@@ -100,7 +127,7 @@ void BM_SurrogateTrial(benchmark::State& state) {
     benchmark::DoNotOptimize(out);
   }
   state.SetItemsProcessed(state.iterations());
-  state.SetLabel(e.reference == va::ReferenceCircle::minimum_zone ? "MZ" : "MI");
+  state.SetLabel(label_of(e.reference));
 }
 BENCHMARK(BM_SurrogateTrial)
     ->Args({3600, 0})
@@ -118,7 +145,7 @@ void BM_RingShrinkage(benchmark::State& state) {
     const auto r = va::evaluate_ring_uncertainty(example_model(), measured, o);
     benchmark::DoNotOptimize(r.roundness.corrected);
   }
-  state.SetLabel(o.evaluation.reference == va::ReferenceCircle::minimum_zone ? "MZ" : "MI");
+  state.SetLabel(label_of(o.evaluation.reference));
 }
 BENCHMARK(BM_RingShrinkage)
     ->Args({3600, 1})

@@ -532,17 +532,15 @@ void draw_errors_validated(const DigitalModel& model, const Measurement& m, Rand
   const Eigen::Index n = m.size();
   if (stages.is_enabled(ErrorSource::roughness)) {
     out.roughness_mm.resize(n);
-    rng.fill_standard_normal(
-        std::span<double>(out.roughness_mm.data(), static_cast<std::size_t>(n)));
-    out.roughness_mm *= model.roughness.sigma_mm;
+    rng.fill_normal(std::span<double>(out.roughness_mm.data(), static_cast<std::size_t>(n)),
+                    model.roughness.sigma_mm);
   } else {
     out.roughness_mm.resize(0);
   }
   if (stages.is_enabled(ErrorSource::noise)) {
     out.noise_mm.resize(3, n);
-    rng.fill_standard_normal(
-        std::span<double>(out.noise_mm.data(), static_cast<std::size_t>(3 * n)));
-    out.noise_mm *= noise_sigma_mm(model, m.mode);
+    rng.fill_normal(std::span<double>(out.noise_mm.data(), static_cast<std::size_t>(3 * n)),
+                    noise_sigma_mm(model, m.mode));
   } else {
     out.noise_mm.resize(3, 0);
   }

@@ -71,6 +71,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -78,6 +79,7 @@
 #include "vcmm/geometry/least_squares.h"
 
 #include "internal/fft.h"
+#include "internal/least_squares_on_rays.h"
 #include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
@@ -375,19 +377,41 @@ bool grid_error_is_negligible(Rays& v, Eigen::Index count, double max_sin,
   const double to_angle = std::asin(max_sin) / max_sin / step;  // per unit of w difference
   const double* w = v.filtered.data();
   const double* sd = v.sin_delta.data();
-  const double range = v.filtered.head(count).maxCoeff() - v.filtered.head(count).minCoeff();
+  // Stage 1: |D_j| = |w_{j+1} − w_j| (cyclic); point j's slope bound is max(|D_{j−1}|, |D_j|),
+  // so max_j slope_j·|s_j| = max(max_j |D_j||s_j|, max_j |D_j||s_{j+1}|). One vectorised
+  // pass for these and the extremes of w (maxima are exact: the same values as separate
+  // reductions), no branch per point.
+  double worst = 0.0, w_max = w[count - 1], w_min = w[count - 1];
+  {
+    namespace simd = Eigen::internal;
+    using Packet = simd::packet_traits<double>::type;
+    constexpr Eigen::Index lanes = simd::packet_traits<double>::size;
+    const Eigen::Index pairs = count - 1;  // D_j for j < count − 1, then the wrap
+    const Eigen::Index packed = pairs - pairs % lanes;
+    Packet pworst = simd::pset1<Packet>(0.0), pmax = simd::pset1<Packet>(w[0]), pmin = pmax;
+    for (Eigen::Index j = 0; j < packed; j += lanes) {
+      const Packet wj = simd::ploadu<Packet>(w + j);
+      const Packet d = simd::pabs(simd::psub(simd::ploadu<Packet>(w + j + 1), wj));
+      const Packet s0 = simd::pabs(simd::ploadu<Packet>(sd + j));
+      const Packet s1 = simd::pabs(simd::ploadu<Packet>(sd + j + 1));
+      pworst = simd::pmax(pworst, simd::pmax(simd::pmul(d, s0), simd::pmul(d, s1)));
+      pmax = simd::pmax(pmax, wj);
+      pmin = simd::pmin(pmin, wj);
+    }
+    worst = simd::predux_max(pworst);
+    w_max = std::max(w_max, simd::predux_max(pmax));
+    w_min = std::min(w_min, simd::predux_min(pmin));
+    for (Eigen::Index j = packed; j < pairs; ++j) {
+      const double d = std::fabs(w[j + 1] - w[j]);
+      worst = std::max({worst, d * std::fabs(sd[j]), d * std::fabs(sd[j + 1])});
+      w_max = std::max(w_max, w[j]);
+      w_min = std::min(w_min, w[j]);
+    }
+    const double d = std::fabs(w[0] - w[count - 1]);  // the wrap: D_{count−1}
+    worst = std::max({worst, d * std::fabs(sd[count - 1]), d * std::fabs(sd[0])});
+  }
+  const double range = w_max - w_min;
   const double tolerance = std::max(1e-3 * range, 1e-10);
-  // Stage 1: |D_j| = |w_{j+1} − w_j| (cyclic) in v.scratch; point j's slope bound is
-  // max(|D_{j−1}|, |D_j|), so max_j slope_j·|s_j| = max(max_j |D_j||s_j|, max_j |D_j||s_{j+1}|)
-  // — vectorised Eigen reductions, no branch per point.
-  auto diff = v.scratch.head(count);
-  diff.head(count - 1) = (v.filtered.segment(1, count - 1) - v.filtered.head(count - 1)).abs();
-  diff[count - 1] = std::fabs(w[0] - w[count - 1]);
-  const auto s_abs = v.sin_delta.head(count).abs();
-  const double worst = std::max(
-      {(diff * s_abs).maxCoeff(),
-       (diff.head(count - 1) * s_abs.segment(1, count - 1)).maxCoeff(),
-       diff[count - 1] * std::fabs(sd[0])});
   if (2.0 * worst * to_angle <= tolerance) return true;
   if (count < 5) return false;
   // Stage 2: g in v.scratch, F(g) in v.scratch2.
@@ -457,11 +481,12 @@ void setup_pass(const SetupPass& k, Eigen::Index count, const double* __restrict
   }
 }
 
-/// The filter of validated points about the circle (center, radius) (file comment).
-FilteredProfile filter_about(std::span<const Point2> points, double cutoff_upr, Point2 center,
-                             double radius, FilterPathChoice choice, const char* caller) {
+/// The filter of validated points about the circle (center, radius) (file comment), into
+/// `out` (storage reused), and the LS circle of the output into *filtered_ls when asked.
+void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 center,
+                  double radius, FilterPathChoice choice, const char* caller,
+                  FilteredProfile& out, LeastSquaresCircle* filtered_ls) {
   const std::size_t n = points.size();
-  FilteredProfile out;
   out.filter_center = center;
   out.mean_radius = radius;
 
@@ -554,7 +579,13 @@ FilteredProfile filter_about(std::span<const Point2> points, double cutoff_upr, 
     const auto e = static_cast<Eigen::Index>(i);
     out.points[i] = {points[i].x + v.x[e] * v.scratch[e], points[i].y + v.y[e] * v.scratch[e]};
   }
-  return out;
+  if (filtered_ls) {
+    // Output point i is c + (R + w_i) u_i on input ray i: its LS circle in one step from c
+    // (least_squares.cpp, "Points on rays"); the full fit where that step is not exact.
+    std::optional<LeastSquaresCircle> ls = internal::least_squares_circle_on_rays(
+        center, radius, v.filtered.data(), v.x.data(), v.y.data(), v.inv_r.data(), n);
+    *filtered_ls = ls ? std::move(*ls) : internal::fit_least_squares_circle(out.points);
+  }
 }
 
 /// filter_about, independent of the input order: when the points are not on an equiangular
@@ -562,11 +593,11 @@ FilteredProfile filter_about(std::span<const Point2> points, double cutoff_upr, 
 /// about the centre are tried (ties: by x, then y, then input index), and the FFT result is
 /// used when that order is equiangular — a shuffled scan gives the scan's result (to
 /// rounding), not the nonuniform path's. Costs nothing on profiles given in angular order.
-FilteredProfile filter_any_order(std::span<const Point2> points, double cutoff_upr,
-                                 Point2 center, double radius, FilterPathChoice choice,
-                                 const char* caller) {
-  FilteredProfile out = filter_about(points, cutoff_upr, center, radius, choice, caller);
-  if (out.path == FilterPath::fft || choice == FilterPathChoice::nonuniform) return out;
+void filter_any_order(std::span<const Point2> points, double cutoff_upr, Point2 center,
+                      double radius, FilterPathChoice choice, const char* caller,
+                      FilteredProfile& out, LeastSquaresCircle* filtered_ls) {
+  filter_about(points, cutoff_upr, center, radius, choice, caller, out, filtered_ls);
+  if (out.path == FilterPath::fft || choice == FilterPathChoice::nonuniform) return;
   const std::size_t n = points.size();
   std::vector<double> angle(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -581,14 +612,16 @@ FilteredProfile filter_any_order(std::span<const Point2> points, double cutoff_u
   });
   bool identity = true;
   for (std::size_t j = 0; j < n && identity; ++j) identity = order[j] == j;
-  if (identity) return out;  // already in angular order: the spacing itself is uneven
+  if (identity) return;  // already in angular order: the spacing itself is uneven
   std::vector<Point2> sorted(n);
   for (std::size_t j = 0; j < n; ++j) sorted[j] = points[order[j]];
-  const FilteredProfile s = filter_about(sorted, cutoff_upr, center, radius, choice, caller);
-  if (s.path != FilterPath::fft) return out;
+  FilteredProfile s;
+  filter_about(sorted, cutoff_upr, center, radius, choice, caller, s, nullptr);
+  if (s.path != FilterPath::fft) return;
   for (std::size_t j = 0; j < n; ++j) out.points[order[j]] = s.points[j];
   out.path = FilterPath::fft;
-  return out;
+  // Rare (a shuffled scan): the LS circle of the output in input order, by the full fit.
+  if (filtered_ls) *filtered_ls = internal::fit_least_squares_circle(out.points);
 }
 
 }  // namespace
@@ -619,12 +652,23 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
   constexpr const char* kCaller = "gaussian_filtered_profile";
   check_filter_input(points, cutoff_upr, kCaller);
   const LeastSquaresCircle ls = internal::fit_least_squares_circle(points);
-  return filter_any_order(points, cutoff_upr, ls.center, ls.radius, choice, kCaller);
+  FilteredProfile out;
+  filter_any_order(points, cutoff_upr, ls.center, ls.radius, choice, kCaller, out, nullptr);
+  return out;
 }
 
 FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
                                           const LeastSquaresCircle& least_squares,
                                           FilterPathChoice choice) {
+  FilteredProfile out;
+  gaussian_filtered_profile(points, cutoff_upr, least_squares, out, nullptr, choice);
+  return out;
+}
+
+void gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
+                               const LeastSquaresCircle& least_squares, FilteredProfile& out,
+                               LeastSquaresCircle* filtered_least_squares,
+                               FilterPathChoice choice) {
   constexpr const char* kCaller = "gaussian_filtered_profile";
   check_filter_input(points, cutoff_upr, kCaller);
   const Point2 c = least_squares.center;
@@ -635,7 +679,7 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
        << "radius > 0; got centre (x = " << c.x << ", y = " << c.y << "), radius " << radius;
     throw InvalidInput(os.str());
   }
-  return filter_any_order(points, cutoff_upr, c, radius, choice, kCaller);
+  filter_any_order(points, cutoff_upr, c, radius, choice, kCaller, out, filtered_least_squares);
 }
 
 }  // namespace vcmm::geometry

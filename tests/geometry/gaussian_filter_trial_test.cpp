@@ -11,6 +11,10 @@
 //  - simulated CMM scans whose noise moves every point tangentially by ~σ/R (0.7 µm on
 //    85.5 mm) stay on the FFT path (the earlier rule sent ~40 % of them to the ~40× slower
 //    nonuniform path);
+//  - the overload filling the caller's FilteredProfile gives the same points bit for bit, and
+//    the LS circle of the filtered points it returns (one step on the rays, least_squares.cpp)
+//    agrees with least_squares_circle of those points to rounding (~1e-14 mm), noisy trials
+//    and the FFT, nonuniform, closed-scan and shuffled-order paths alike;
 //  - evaluate_roundness, which now validates the profile once, still reports bad input
 //    through the first requested fitter, as each fitter did on its own.
 // Fixed seeds; each filter call is ~0.1 ms (FFT) to ~3 ms (nonuniform) at 3600 points.
@@ -19,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -52,18 +57,28 @@ void expect_identical(const FilteredProfile& a, const FilteredProfile& b) {
   for (std::size_t i = 0; i < a.points.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << i;
 }
 
+/// One profile per filter path: FFT (a lobed noisy ring off the origin), nonuniform (±0.2 step
+/// of angular jitter on a steep 30-lobe profile), a closed scan repeating its first point (the
+/// n − 1 path).
+struct PathProfiles {
+  std::vector<Point2> lobed = vcmm::test::lobed_noisy_ring(3600, 7, 5e-5, {250.0, -120.0});
+  std::vector<Point2> jittered = [] {
+    RingSpec spec;
+    spec.n = 720;
+    spec.harmonics = {Harmonic{30, 1e-3, 0.4}};
+    spec.angle_jitter = 0.4;
+    return ring_profile(spec);
+  }();
+  std::vector<Point2> closed = [] {
+    std::vector<Point2> p = vcmm::test::lobed_noisy_ring(900, 8, 2e-5);
+    p.push_back(p.front());
+    return p;
+  }();
+};
+
 TEST(GaussianFilterSharedLeastSquares, BitForBitTheSameAsFittingItAgain) {
-  // FFT path: a lobed noisy ring off the origin.
-  const auto lobed = vcmm::test::lobed_noisy_ring(3600, 7, 5e-5, {250.0, -120.0});
-  // Nonuniform path: ±0.2 step of angular jitter on a steep 30-lobe profile.
-  RingSpec jittered_spec;
-  jittered_spec.n = 720;
-  jittered_spec.harmonics = {Harmonic{30, 1e-3, 0.4}};
-  jittered_spec.angle_jitter = 0.4;
-  const auto jittered = ring_profile(jittered_spec);
-  // A closed scan repeating its first point (the n − 1 path).
-  std::vector<Point2> closed = vcmm::test::lobed_noisy_ring(900, 8, 2e-5);
-  closed.push_back(closed.front());
+  const PathProfiles p;
+  const auto& [lobed, jittered, closed] = p;
   const std::vector<const std::vector<Point2>*> profiles = {&lobed, &jittered, &closed};
   for (const std::vector<Point2>* pts : profiles) {
     for (double fc : {15.0, 50.0, 150.0}) {
@@ -79,6 +94,86 @@ TEST(GaussianFilterSharedLeastSquares, BitForBitTheSameAsFittingItAgain) {
   EXPECT_EQ(gaussian_filtered_profile(lobed, 50).path, FilterPath::fft);
   EXPECT_EQ(gaussian_filtered_profile(jittered, 50).path, FilterPath::nonuniform);
   EXPECT_EQ(gaussian_filtered_profile(closed, 50).path, FilterPath::fft);
+}
+
+/// The filtered profile's LS circle from the filter against the full fit of its points:
+/// centre and radius within `tol` mm, RONt/RONp/RONv/RONq within `tol`; the contacts are the
+/// same points or points whose residuals differ by at most `tol`.
+void expect_same_least_squares(const LeastSquaresCircle& on_rays,
+                               const std::vector<Point2>& filtered, double tol) {
+  const LeastSquaresCircle full = least_squares_circle(filtered);
+  EXPECT_NEAR(on_rays.center.x, full.center.x, tol);
+  EXPECT_NEAR(on_rays.center.y, full.center.y, tol);
+  EXPECT_NEAR(on_rays.radius, full.radius, tol);
+  EXPECT_NEAR(on_rays.ron.ront, full.ron.ront, tol);
+  EXPECT_NEAR(on_rays.ron.ronp, full.ron.ronp, tol);
+  EXPECT_NEAR(on_rays.ron.ronv, full.ron.ronv, tol);
+  EXPECT_NEAR(on_rays.ron.ronq, full.ron.ronq, tol);
+  ASSERT_EQ(on_rays.contacts.size(), 2u);
+  const auto residual = [&](std::size_t i) {
+    return std::hypot(filtered[i].x - full.center.x, filtered[i].y - full.center.y) - full.radius;
+  };
+  for (std::size_t k = 0; k < 2; ++k)
+    EXPECT_NEAR(residual(on_rays.contacts[k]), residual(full.contacts[k]), tol) << k;
+}
+
+TEST(GaussianFilterIntoCallersProfile, SamePointsAndTheFilteredLeastSquaresCircle) {
+  const PathProfiles p;
+  const auto& [lobed, jittered, closed] = p;
+  // A shuffled scan: filtered in angular order, the output back in input order.
+  std::vector<Point2> shuffled = vcmm::test::lobed_noisy_ring(360, 9, 2e-5);
+  std::swap(shuffled[10], shuffled[200]);
+  std::swap(shuffled[3], shuffled[77]);
+  const std::vector<const std::vector<Point2>*> profiles = {&lobed, &jittered, &closed,
+                                                            &shuffled};
+  FilteredProfile reused;  // one object for every call: sizes change, storage is reused
+  for (const std::vector<Point2>* pts : profiles) {
+    for (double fc : {15.0, 50.0, 150.0}) {
+      SCOPED_TRACE("n " + std::to_string(pts->size()) + ", cut-off " + std::to_string(fc));
+      const LeastSquaresCircle ls = least_squares_circle(*pts);
+      LeastSquaresCircle filtered_ls;
+      gaussian_filtered_profile(*pts, fc, ls, reused, &filtered_ls);
+      expect_identical(gaussian_filtered_profile(*pts, fc, ls), reused);
+      expect_same_least_squares(filtered_ls, reused.points, 1e-12);
+      gaussian_filtered_profile(*pts, fc, ls, reused, nullptr, FilterPathChoice::nonuniform);
+      expect_identical(gaussian_filtered_profile(*pts, fc, ls, FilterPathChoice::nonuniform),
+                       reused);
+    }
+  }
+  EXPECT_EQ(gaussian_filtered_profile(shuffled, 50).path, FilterPath::fft);
+}
+
+TEST(GaussianFilterIntoCallersProfile, FilteredLeastSquaresOfNoisyScansToRounding) {
+  // The Monte Carlo trial's case: a 171 mm ring with ~0.1 µm form and 0.7 µm noise, filtered
+  // at 50 UPR about its LS circle; the LS centre of the filtered points is ~1e-10 mm away.
+  // Measured worst differences from the full fit over these 50 scans: see the tolerance.
+  double worst_center = 0.0, worst_ront = 0.0;
+  for (int seed = 1; seed <= 50; ++seed) {
+    std::uint64_t state = 0xD1B54A32D192ED03ULL * static_cast<std::uint64_t>(seed);
+    std::vector<Point2> pts;
+    for (int i = 0; i < 3600; ++i) {
+      const double t = 2 * kPi * i / 3600.0;
+      const double r = 85.5 + 4.5e-5 * std::cos(2 * t + 0.3) + 3e-5 * std::cos(3 * t + 1.1);
+      pts.push_back({12.0 + r * std::cos(t) + 7e-4 * vcmm::test::standard_normal(state),
+                     -7.0 + r * std::sin(t) + 7e-4 * vcmm::test::standard_normal(state)});
+    }
+    const LeastSquaresCircle ls = least_squares_circle(pts);
+    FilteredProfile f;
+    LeastSquaresCircle filtered_ls;
+    gaussian_filtered_profile(pts, 50, ls, f, &filtered_ls);
+    ASSERT_EQ(f.path, FilterPath::fft);
+    EXPECT_EQ(filtered_ls.iterations, 1);  // the one-step path, not the fallback
+    expect_same_least_squares(filtered_ls, f.points, 1e-13);
+    const LeastSquaresCircle full = least_squares_circle(f.points);
+    worst_center = std::max({worst_center, std::fabs(filtered_ls.center.x - full.center.x),
+                             std::fabs(filtered_ls.center.y - full.center.y)});
+    worst_ront = std::max(worst_ront, std::fabs(filtered_ls.ron.ront - full.ron.ront));
+    // The step from the input's LS centre is real (the cheap shortcut "same centre" is not
+    // exact): ~1e-10 mm, i.e. far above the agreement asserted.
+    EXPECT_GT(std::hypot(full.center.x - ls.center.x, full.center.y - ls.center.y), 1e-13);
+  }
+  std::printf("filtered LS on rays vs full fit, 50 scans: centre %.3g mm, RONt %.3g mm\n",
+              worst_center, worst_ront);
 }
 
 TEST(GaussianFilterSharedLeastSquaresBadInput, CircleMustBeFiniteWithPositiveRadius) {

@@ -166,7 +166,8 @@ TEST(RandomStream, PinnedFirstValuesOfSeed1Stream0) {
 }
 
 TEST(RandomStream, BulkCallsGiveTheValuesOfSingleCalls) {
-  // Any mixture of bulk and single calls consumes the same word sequence in order.
+  // Any mixture of bulk and single calls consumes the same word sequence in order; fill_normal
+  // gives sigma times the values of fill_standard_normal.
   RandomStream single(42, 3), bulk(42, 3);
   RandomStream sizes(99, 0);  // random chunk sizes, 0 … ~600 (several refills)
   std::vector<double> buffer;
@@ -176,9 +177,15 @@ TEST(RandomStream, BulkCallsGiveTheValuesOfSingleCalls) {
     if (round % 3 == 0) {
       bulk.fill_uniform(buffer);
       for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(buffer[i], single.uniform()) << round;
-    } else {
+    } else if (round % 3 == 1) {
       bulk.fill_standard_normal(buffer);
       for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(buffer[i], single.standard_normal()) << round;
+    } else {
+      // fill_normal: the same normals times sigma, rounded once more (bit for bit).
+      const double sigma = 7e-4 * (1.0 + 0.01 * round);
+      bulk.fill_normal(buffer, sigma);
+      for (std::size_t i = 0; i < n; ++i)
+        ASSERT_EQ(buffer[i], single.standard_normal() * sigma) << round;
     }
     if (round % 7 == 0) {
       ASSERT_EQ(bulk.next_u64(), single.next_u64());
@@ -280,6 +287,45 @@ TEST(Ziggurat, TablesMatchMarsagliaTsangAndCloseExactly) {
   const internal::ZigguratTables again = internal::compute_ziggurat_tables();
   EXPECT_EQ(again.x, z.x);
   EXPECT_EQ(again.f, z.f);
+}
+
+TEST(Ziggurat, WedgeSqueezeDecidesAsTheExponential) {
+  // wedge_accepts must give y < portable_exp(−x²/2) exactly: random candidates in every
+  // wedge, and candidates within a few ulps of the curve (where the squeeze must defer to exp)
+  // and of the squeeze lines' reach (the chord and tangent are within ~1e-5 of f, so y at
+  // f ± 1e-7 … 1e-13 probes both the squeezed and the deferred ranges).
+  const internal::ZigguratTables& z = internal::ziggurat_tables();
+  std::uint64_t state = 0x243F6A8885A308D3ULL;
+  const auto uniform = [&state] {
+    state += 0x9E3779B97F4A7C15ULL;
+    std::uint64_t w = state;
+    w = (w ^ (w >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    w = (w ^ (w >> 27)) * 0x94D049BB133111EBULL;
+    return static_cast<double>((w ^ (w >> 31)) >> 11) * 0x1p-53;
+  };
+  std::size_t checked = 0, mismatches = 0;
+  const auto check = [&](std::size_t layer, double x, double y) {
+    ++checked;
+    const bool exact = y < internal::portable_exp(-0.5 * x * x);
+    if (internal::wedge_accepts(layer, x, y) != exact && ++mismatches <= 5)
+      ADD_FAILURE() << "layer " << layer << " x " << x << " y " << y << " exact " << exact;
+  };
+  for (std::size_t i = 1; i < static_cast<std::size_t>(internal::ZigguratTables::layers); ++i) {
+    const double x0 = z.x[i + 1], x1 = z.x[i], f0 = z.f[i], f1 = z.f[i + 1];
+    for (int k = 0; k < 2000; ++k) {
+      const double x = x0 + uniform() * (x1 - x0);
+      check(i, x, f0 + uniform() * (f1 - f0));
+      const double f = internal::portable_exp(-0.5 * x * x);
+      for (double d : {1e-7, 1e-9, 1e-11, 1e-13, 2e-14, 1e-14, 5e-15, 1e-15}) {
+        check(i, x, f + d);
+        check(i, x, f - d);
+      }
+      double y = f;
+      for (int u = 0; u < 4; ++u) y = std::nextafter(y, 0.0);
+      for (int u = 0; u < 8; ++u, y = std::nextafter(y, 2.0)) check(i, x, y);
+    }
+  }
+  EXPECT_EQ(mismatches, 0u) << "of " << checked;
 }
 
 // ---- statistics of the variates -------------------------------------------------------------

@@ -6,7 +6,9 @@
 //   x = (w >> 11) · 2⁻⁵³ · x[i]  =  (w >> 11) · (x[i] · 2⁻⁵³)
 // (scaling by a power of two is exact, so the pre-scaled table gives the same bits); x is
 // accepted at once when x < x[i+1] (inside the layer's core box: 98.5 % of words). Otherwise
-// normal_slow_path() runs the wedge test y < exp(−x²/2), y uniform on [f(x[i]), f(x[i+1])),
+// normal_slow_path() runs the wedge test y < exp(−x²/2), y uniform on [f(x[i]), f(x[i+1]))
+// (decided by linear squeezes where they can, the exponential otherwise: same answer, see
+// internal::wedge_accepts),
 // or for i = 0 and x ≥ r Marsaglia's tail method: a = −ln U₁ / r, b = −ln U₂ with U on
 // (0, 1], repeated until 2b ≥ a², giving r + a. A rejected candidate restarts from a fresh
 // word (layer and all), which keeps the method exact. Uniforms for the slow paths are fresh
@@ -16,6 +18,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define VCMM_PHILOX_X86 1
@@ -343,7 +346,48 @@ const ScaledTables& scaled_tables() {
   return tables;
 }
 
+// The squeeze lines of each wedge (ziggurat.h, wedge_accepts): y accepted below
+// lower_a + lower_b·x − margin, rejected above upper_a + upper_b·x + margin. Layers 0 (the
+// base: no wedge test) and the one containing x = 1 get lines that never decide (±inf).
+constexpr double kSqueezeMargin = 1e-14;
+struct SqueezeTables {
+  std::array<double, kLayers> lower_a{}, lower_b{}, upper_a{}, upper_b{};
+  SqueezeTables() {
+    const ZigguratTables& z = ziggurat_tables();
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < static_cast<std::size_t>(kLayers); ++i) {
+      lower_a[i] = -inf;
+      upper_a[i] = inf;
+      if (i == 0) continue;
+      const double x0 = z.x[i + 1], x1 = z.x[i];  // the wedge is [x0, x1)
+      const bool concave = x1 <= 1.0, convex = x0 >= 1.0;
+      if (!concave && !convex) continue;
+      const double chord_b = (z.f[i] - z.f[i + 1]) / (x1 - x0);
+      const double chord_a = z.f[i + 1] - chord_b * x0;
+      const double m = 0.5 * (x0 + x1), fm = portable_exp(-0.5 * m * m);
+      const double tangent_b = -m * fm, tangent_a = fm - tangent_b * m;
+      lower_a[i] = concave ? chord_a : tangent_a;
+      lower_b[i] = concave ? chord_b : tangent_b;
+      upper_a[i] = concave ? tangent_a : chord_a;
+      upper_b[i] = concave ? tangent_b : chord_b;
+    }
+  }
+};
+
+const SqueezeTables& squeeze_tables() {
+  static const SqueezeTables tables;
+  return tables;
+}
+
 }  // namespace
+
+bool wedge_accepts(std::size_t layer, double x, double y) {
+  const SqueezeTables& s = squeeze_tables();
+  if (y < s.lower_a[layer] + s.lower_b[layer] * x - kSqueezeMargin) return true;
+  if (y > s.upper_a[layer] + s.upper_b[layer] * x + kSqueezeMargin) return false;
+  return y < portable_exp(-0.5 * x * x);
+}
+
 }  // namespace internal
 
 namespace {
@@ -419,7 +463,7 @@ double RandomStream::normal_slow_path(std::uint64_t word) {
       return with_sign_bit(z.r + a, word);
     }
     const double y = z.f[layer] + uniform53(next_u64()) * (z.f[layer + 1] - z.f[layer]);
-    if (y < internal::portable_exp(-0.5 * x * x)) return with_sign_bit(x, word);
+    if (internal::wedge_accepts(layer, x, y)) return with_sign_bit(x, word);
     word = next_u64();  // rejected: start again with a fresh word
   }
 }
@@ -436,7 +480,9 @@ double RandomStream::standard_normal() {
 // The loop below runs at ~2.1 ns a value on the 2.6 GHz AVX-512 Xeon of docs/performance.md,
 // of which ~0.75 ns is Philox. An AVX-512 variant testing 8 words at once with two gathers
 // from the table was slower there (2.75 ns: gathers are slow on that CPU), so it was dropped.
-void RandomStream::fill_standard_normal(std::span<double> out) {
+// kScaled: each value times sigma as a separate rounding (the bits of scaling afterwards).
+template <bool kScaled>
+void RandomStream::fill_normal_values(std::span<double> out, double sigma) {
   const internal::FastEntry* table = internal::scaled_tables().entry.data();
   double* o = out.data();
   const std::size_t n = out.size();
@@ -450,15 +496,25 @@ void RandomStream::fill_standard_normal(std::span<double> out) {
       const internal::FastEntry& e = table[w[k] & 0x1ffu];
       const std::uint64_t a = w[k] >> 11;
       if (a >= e.accept_below) break;  // the slow path takes this word
-      o[i + k] = static_cast<double>(static_cast<std::int64_t>(a)) * e.x_scaled;
+      const double z = static_cast<double>(static_cast<std::int64_t>(a)) * e.x_scaled;
+      o[i + k] = kScaled ? z * sigma : z;
     }
     position_ += k;
     i += k;
     if (k < m) {
       const std::uint64_t word = words_[position_++];
-      o[i++] = normal_slow_path(word);
+      const double z = normal_slow_path(word);
+      o[i++] = kScaled ? z * sigma : z;
     }
   }
+}
+
+void RandomStream::fill_standard_normal(std::span<double> out) {
+  fill_normal_values<false>(out, 1.0);
+}
+
+void RandomStream::fill_normal(std::span<double> out, double sigma) {
+  fill_normal_values<true>(out, sigma);
 }
 
 void RandomStream::fill_uniform(std::span<double> out) {

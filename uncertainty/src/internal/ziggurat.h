@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 namespace vcmm::uncertainty::internal {
 
@@ -38,5 +39,17 @@ ZigguratTables compute_ziggurat_tables();
 
 /// The tables, computed once on first use (thread-safe static).
 const ZigguratTables& ziggurat_tables();
+
+/// The wedge test of layer i (1 ≤ i < N) for a candidate x in [x[i+1], x[i]) and y in
+/// [f[i], f[i+1]): y < portable_exp(−x²/2), bit for bit, but decided without the exponential
+/// where a squeeze decides it. On a wedge f is concave (x[i] ≤ 1) or convex (x[i+1] ≥ 1), so
+/// the chord through the layer's two table points and the tangent at the wedge's midpoint
+/// bound f from either side (concave: chord ≤ f ≤ tangent; convex: tangent ≤ f ≤ chord).
+/// y below the lower line minus a margin is accepted, above the upper line plus the margin
+/// rejected; only the sliver between them (or the one layer containing x = 1) calls exp.
+/// Margin 1e-14 (f ≤ 1): it covers the table values (≤ 2 ulps off f), the rounding of the
+/// lines (a few ulps of 1), of −x²/2 (|x| < r ≈ 3.65: ≤ 7.4e-16 relative in f) and of
+/// portable_exp (< 1 ulp), ≈ 2e-15 together. Tested against the exponential alone.
+bool wedge_accepts(std::size_t layer, double x, double y);
 
 }  // namespace vcmm::uncertainty::internal

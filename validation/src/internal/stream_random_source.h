@@ -15,6 +15,9 @@ class StreamRandomSource final : public errormodel::RandomSource {
   explicit StreamRandomSource(uncertainty::RandomStream& stream) : stream_(stream) {}
   void fill_standard_normal(std::span<double> out) override { stream_.fill_standard_normal(out); }
   void fill_uniform(std::span<double> out) override { stream_.fill_uniform(out); }
+  void fill_normal(std::span<double> out, double sigma) override {
+    stream_.fill_normal(out, sigma);
+  }
 
  private:
   uncertainty::RandomStream& stream_;

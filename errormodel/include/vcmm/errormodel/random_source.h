@@ -18,6 +18,13 @@ class RandomSource {
   virtual void fill_standard_normal(std::span<double> out) = 0;
   /// Fills `out` with independent variates uniform on [0, 1).
   virtual void fill_uniform(std::span<double> out) = 0;
+  /// Fills `out` with sigma times independent standard normal variates: by default
+  /// fill_standard_normal, then each value times sigma; a source may fuse the two (the same
+  /// values bit for bit).
+  virtual void fill_normal(std::span<double> out, double sigma) {
+    fill_standard_normal(out);
+    for (double& v : out) v *= sigma;
+  }
 
   double standard_normal() {
     double v = 0.0;

@@ -71,6 +71,10 @@ class RandomStream {
   /// 1.022 words a value on average, Philox evaluated up to 128 blocks at a time with SIMD,
   /// ~2.1 ns a value. O(n).
   void fill_standard_normal(std::span<double> out);
+  /// out[i] = sigma · standard_normal(), i = 0, 1, … — the values of fill_standard_normal
+  /// times sigma (one more rounding, the same bits as scaling them afterwards), without the
+  /// second pass over `out` (~2 µs for 14 400 values). O(n).
+  void fill_normal(std::span<double> out, double sigma);
 
   std::uint64_t seed() const { return seed_; }
   std::uint64_t stream() const { return stream_; }
@@ -83,6 +87,8 @@ class RandomStream {
  private:
   // Generates the next min(128, ⌈hint/2⌉) blocks (at least one) into the buffer.
   void refill(std::size_t hint_words);
+  template <bool kScaled>
+  void fill_normal_values(std::span<double> out, double sigma);
   double normal_slow_path(std::uint64_t word);
   std::uint64_t seed_;
   std::uint64_t stream_;

@@ -92,17 +92,19 @@ void EquiangularTransform::values(std::span<const double> cos, std::span<const d
     const std::size_t m = half;  // N
     std::fill(p.re.begin(), p.re.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
     std::fill(p.im.begin(), p.im.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
-    // Only k < count and k + N with N − k < count are non-zero.
-    for (std::size_t k = 0; k < m; ++k) {
-      const bool low = k < count, high = k == 0 ? m < count : m - k < count;
-      if (!low && !high) continue;
+    // Only k < count and k + N with N − k < count are non-zero: two runs of k.
+    const auto pair = [&](std::size_t k) {
       const Cx a = y(k);
       const Cx b = k == 0 ? y(m) : conj(y(m - k));  // Y_{k+N}
       const Cx e = a + b;
       const Cx o = (a - b) * p.twiddle[k];
       p.re[k] = e.re - o.im;  // E + i O
       p.im[k] = e.im + o.re;
-    }
+    };
+    const std::size_t low_end = std::min(count, m);
+    for (std::size_t k = 0; k < low_end; ++k) pair(k);
+    const std::size_t high_start = count > m ? low_end : std::max(low_end, m - count + 1);
+    for (std::size_t k = high_start; k < m; ++k) pair(k);
     p.half->inverse(p.re.data(), p.im.data());
     for (std::size_t j = 0; j < m; ++j) {
       out[2 * j] = p.re[j];

@@ -9,12 +9,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/random_source.h"
 #include "vcmm/errormodel/ring_gauge.h"
+#include "vcmm/geometry/minimum_zone.h"
 #include "vcmm/validation/ring_experiment.h"
 
 namespace vcmm::validation {
@@ -127,6 +129,36 @@ TEST(SpectralTrial, BoundIsBelowOneNanometreForTheExampleRing) {
                 m.bound().second_order_mm, m.bound().kinematic_position_mm,
                 m.bound().grid_offset_mm, m.bound().diameter_mm, m.bound().roundness_mm);
   }
+}
+
+// The minimum zone from a subset equals the minimum zone of all points: smooth form, form plus
+// noise (filtered and not), pure noise, few points, a lobed profile. Seeds in the messages.
+TEST(SpectralTrial, MinimumZoneFromASubsetIsTheMinimumZoneOfAllPoints) {
+  MinimumZoneScratch scratch;
+  std::vector<geometry::Point2> points;
+  std::vector<double> deviation;
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    em::SeededRandomSource rng(seed);
+    const std::size_t n = seed % 4 == 0 ? 60 : 3600;
+    const double noise_mm = seed % 3 == 0 ? 0.0 : 1e-3 * rng.uniform();
+    const double form_mm = seed % 5 == 0 ? 0.0 : 2e-3 * rng.uniform();
+    const double lobes = 2.0 + static_cast<double>(seed % 7);
+    const double phase = 6.0 * rng.uniform();
+    points.resize(n);
+    deviation.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      const double t = 2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(n);
+      deviation[j] = form_mm * std::cos(lobes * t + phase) + noise_mm * rng.standard_normal() +
+                     1e-6 * std::cos(17 * t);
+      const double r = 85.5 + deviation[j];
+      points[j] = {3.0 + r * std::cos(t), -2.0 + r * std::sin(t)};  // off-centre: any frame
+    }
+    const double exact = geometry::minimum_zone_circle(points).ron.ront;
+    const double fast = minimum_zone_ront_by_subset(points, deviation, scratch);
+    EXPECT_NEAR(fast, exact, 1e-12) << "seed " << seed << ", n " << n;
+  }
+  EXPECT_THROW(minimum_zone_ront_by_subset(points, std::vector<double>(3), scratch),
+               geometry::InvalidInput);
 }
 
 // ---- in distribution ---------------------------------------------------------------------------
@@ -279,6 +311,35 @@ TEST(SpectralTrial, RefusesWhereItDoesNotApplyAndSaysWhy) {
   } catch (const geometry::InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("equiangular"), std::string::npos) << e.what();
   }
+}
+
+// The evaluation picks the trial (auto: spectral where it applies), records it, and refuses
+// spectral with the budget or where it does not apply.
+TEST(SpectralTrial, EvaluationChoosesAndRecordsTheTrial) {
+  const em::DigitalModel& model = example_model();
+  const auto best = ring(em::ProbingMode::scanning, 720, kCentre);
+  RingUncertaintyOptions o;
+  o.roundness_bias = RoundnessBiasTreatment::paper;
+  o.monte_carlo.trials = 200;
+  o.monte_carlo.threads = 1;
+  const auto automatic = evaluate_ring_uncertainty_on_surface(model, best, o);
+  EXPECT_EQ(automatic.trial.kind, TrialKind::spectral) << automatic.trial.reason;
+  o.trial = TrialKind::exact;
+  EXPECT_EQ(evaluate_ring_uncertainty_on_surface(model, best, o).trial.kind, TrialKind::exact);
+  o.trial = TrialKind::automatic;
+  o.budget = BudgetOptions{};
+  const auto with_budget = evaluate_ring_uncertainty_on_surface(model, best, o);
+  EXPECT_EQ(with_budget.trial.kind, TrialKind::exact);
+  EXPECT_NE(with_budget.trial.reason.find("budget"), std::string::npos);
+  o.trial = TrialKind::spectral;
+  EXPECT_THROW(evaluate_ring_uncertainty_on_surface(model, best, o), geometry::InvalidInput);
+  o.budget.reset();
+  o.evaluation.filter_cutoff_upr.reset();
+  EXPECT_THROW(evaluate_ring_uncertainty_on_surface(model, best, o), geometry::InvalidInput);
+  o.trial = TrialKind::automatic;
+  const auto unfiltered = evaluate_ring_uncertainty_on_surface(model, best, o);
+  EXPECT_EQ(unfiltered.trial.kind, TrialKind::exact);
+  EXPECT_NE(unfiltered.trial.reason.find("filter"), std::string::npos);
 }
 
 TEST(SpectralTrial, TrialKindNamesRoundTrip) {

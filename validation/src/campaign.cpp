@@ -266,7 +266,7 @@ class Reader {
     only_keys(v,
               {{"reference_circle", ""}, {"filter_cutoff_upr", "the filter cut-off"},
                {"trials", ""}, {"seed", ""}, {"coverage_probability", ""}, {"k", ""},
-               {"bias_treatment", ""}, {"kinematic_errors", ""}},
+               {"bias_treatment", ""}, {"kinematic_errors", ""}, {"trial", ""}},
               path);
     EvaluationSettings e;
     if (const json* rc = find(v, "reference_circle")) {
@@ -330,6 +330,12 @@ class Reader {
         fail(join(path, "kinematic_errors"), "must be \"corrected\" or \"uncertainty_only\"",
              *ke);
       e.kinematics_corrected = text == "corrected";
+    }
+    if (const json* t = find(v, "trial")) {
+      const auto kind = t->is_string() ? trial_kind_from_string(t->get<std::string>())
+                                       : std::nullopt;
+      if (!kind) fail(join(path, "trial"), "must be \"auto\", \"exact\" or \"spectral\"", *t);
+      e.trial = *kind;
     }
     return e;
   }
@@ -651,6 +657,7 @@ std::string campaign_json(const Campaign& c) {
   e["k"] = c.evaluation.k;
   e["bias_treatment"] = std::string(to_string(c.evaluation.bias_treatment));
   e["kinematic_errors"] = c.evaluation.kinematics_corrected ? "corrected" : "uncertainty_only";
+  e["trial"] = std::string(to_string(c.evaluation.trial));
   ordered_json list = ordered_json::array();
   for (const CampaignMeasurement& m : c.measurements) {
     ordered_json mj;

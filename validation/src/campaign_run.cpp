@@ -307,6 +307,7 @@ json outcome_to_json(const MeasurementOutcome& o) {
           {"points", o.points},
           {"seed", o.seed},
           {"trials", o.trials},
+          {"trial", o.trial},
           {"wall_seconds", o.wall_seconds},
           {"diameter", measurand_to_json(o.diameter)},
           {"roundness", measurand_to_json(o.roundness)}};
@@ -323,6 +324,7 @@ MeasurementOutcome outcome_from_json(const json& j) {
   o.points = j.at("points").get<std::size_t>();
   o.seed = j.at("seed").get<std::uint64_t>();
   o.trials = j.at("trials").get<std::uint64_t>();
+  o.trial = j.value("trial", std::string("exact"));  // files before the spectral trial
   o.wall_seconds = j.at("wall_seconds").get<double>();
   o.diameter = measurand_from_json(j.at("diameter"));
   o.roundness = measurand_from_json(j.at("roundness"));
@@ -667,7 +669,9 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     uo.monte_carlo.progress = options.progress;
     uo.monte_carlo.cancel = options.cancel;
     uo.roundness_bias = ev.bias_treatment;
+    uo.trial = ev.trial;
     const RingUncertaintyResult a = evaluate_ring_uncertainty(model, measured, uo);
+    m.trial = std::string(to_string(a.trial.kind));
     if (a.monte_carlo.status == uncertainty::RunStatus::cancelled) {
       outcome.cancelled = true;
       break;
@@ -787,6 +791,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                {"denoised_treatment", run_denoised},
                {"bias_treatment", std::string(to_string(ev.bias_treatment))},
                {"kinematic_errors", ev.kinematics_corrected ? "corrected" : "uncertainty_only"},
+               {"trial", std::string(to_string(ev.trial))},
                {"wall_seconds_this_run", outcome.wall_seconds}};
   info["vcmm_version"] = std::string(vcmm_version());
   info["git_revision"] = std::string(vcmm_revision());

@@ -1,5 +1,5 @@
 // validation/src/spectral_trial.cpp — the spectral Monte Carlo trial of a ring measurement
-// (notation, derivation and what it neglects: the header and docs/uncertainty.md, "The spectral
+// (notation, derivation and what it neglects: the header and docs/validation.md, "The spectral
 // trial").
 #include "vcmm/validation/spectral_trial.h"
 
@@ -14,6 +14,7 @@
 #include "internal/stream_random_source.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
+#include "vcmm/geometry/minimum_zone.h"
 
 namespace vcmm::validation {
 namespace {
@@ -143,10 +144,93 @@ SpectralApplicability check_applicability(const em::DigitalModel& model,
     }
   }
   return {true, "the roundness is filtered and the profile is equiangular: the spectral trial "
-                "applies (docs/uncertainty.md, \"The spectral trial\")"};
+                "applies (docs/validation.md, \"The spectral trial\")"};
 }
 
 }  // namespace
+
+/// Neighbours taken on either side of a peak or valley: the reference's centre shift tilts the
+/// profile by a harmonic 1, which moves an extremum of a profile sampled ≥ 8 points per
+/// shortest wavelength (the filtered band) by less than a sample; two are a margin. (Only the
+/// speed depends on it: the check below makes the result exact for any starting subset.)
+constexpr std::size_t kNeighbours = 2;
+/// Relative rounding of a squared distance and of a squared radius a few ulps from exact:
+/// 1e-14 (~45 ulps) of r² is 4e-13 mm of radius at r = 85 mm, below what any RONt resolves.
+constexpr double kRoundingOfSquares = 1e-14;
+
+// minimum_zone_ront_by_subset (header): the subset S, its minimum zone, the check, the rounds.
+double minimum_zone_ront_by_subset(std::span<const geometry::Point2> points,
+                                   std::span<const double> d, MinimumZoneScratch& scratch) {
+  const std::size_t n = points.size();
+  if (d.size() != n || n < 8)
+    throw geometry::InvalidInput("minimum_zone_ront_by_subset: expected at least 8 points and "
+                                 "one deviation per point; got " + std::to_string(n) +
+                                 " points and " + std::to_string(d.size()) + " deviations");
+  std::vector<geometry::Point2>& subset = scratch.subset;
+  std::vector<unsigned char>& member = scratch.member;
+  std::vector<unsigned char>& flag = scratch.flag;
+  std::vector<double>& r2 = scratch.squared_distance;
+  member.assign(n, 0);
+  flag.resize(n);
+  subset.clear();
+  // Peaks of v above `top` and valleys below `bottom` (cyclic; flags computed branch-free so
+  // that the pass vectorises), each joining S with its neighbours. Returns how many of them
+  // were not in S yet.
+  const auto take_extremes = [&](const double* v, double top, double bottom) {
+    const auto extreme = [&](std::size_t j, std::size_t prev, std::size_t next) {
+      const double x = v[j], a = v[prev], b = v[next];
+      return static_cast<unsigned char>(((x > top) & (x >= a) & (x >= b)) |
+                                        ((x < bottom) & (x <= a) & (x <= b)));
+    };
+    flag[0] = extreme(0, n - 1, 1);
+    for (std::size_t j = 1; j + 1 < n; ++j) {
+      const double x = v[j], a = v[j - 1], b = v[j + 1];
+      flag[j] = static_cast<unsigned char>(((x > top) & (x >= a) & (x >= b)) |
+                                           ((x < bottom) & (x <= a) & (x <= b)));
+    }
+    flag[n - 1] = extreme(n - 1, n - 2, 0);
+    std::size_t taken = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (!flag[j]) continue;
+      taken += member[j] ? 0 : 1;
+      for (std::size_t k = n + j - kNeighbours; k <= n + j + kNeighbours; ++k) {
+        if (!member[k % n]) {
+          member[k % n] = 1;
+          subset.push_back(points[k % n]);
+        }
+      }
+    }
+    return taken;
+  };
+  {
+    const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
+    const double band = 0.25 * (*hi - *lo);
+    take_extremes(d.data(), *hi - band, *lo + band);
+  }
+  r2.resize(n);
+  constexpr int kRounds = 6;
+  for (int round = 0; round < kRounds && subset.size() >= 8; ++round) {
+    const auto mz = geometry::minimum_zone_circle(subset);
+    const double cx = mz.center.x, cy = mz.center.y;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double dx = points[j].x - cx, dy = points[j].y - cy;
+      r2[j] = dx * dx + dy * dy;
+    }
+    const Eigen::Map<const Eigen::ArrayXd> all(r2.data(), static_cast<Eigen::Index>(n));
+    const double r2_hi = all.maxCoeff(), r2_lo = all.minCoeff();
+    // Every point in the annulus, to the rounding of r² (its contacts, members of S, lie on
+    // it to a few ulps): S's zone is the zone of all points.
+    const double inner2 = mz.inner_radius * mz.inner_radius;
+    const double outer2 = mz.outer_radius * mz.outer_radius;
+    if (r2_hi <= outer2 * (1.0 + kRoundingOfSquares) &&
+        r2_lo >= inner2 * (1.0 - kRoundingOfSquares))
+      return std::sqrt(r2_hi) - std::sqrt(r2_lo);
+    // Else the violated lobes' extremes join S.
+    if (take_extremes(r2.data(), outer2, inner2) == 0)  // violations at rounding level only
+      return std::sqrt(r2_hi) - std::sqrt(r2_lo);
+  }
+  return geometry::minimum_zone_circle(points).ron.ront;
+}
 
 std::string_view to_string(TrialKind kind) {
   switch (kind) {
@@ -169,6 +253,23 @@ SpectralApplicability spectral_trial_applicability(const em::DigitalModel& model
                                                    const em::Stages& stages) {
   em::validate_measurement(best, "spectral_trial_applicability");
   return check_applicability(model, best, options, stages, estimate_geometry(best));
+}
+
+TrialChoice choose_ring_trial(const em::DigitalModel& model, const em::Measurement& best,
+                              const RingEvaluationOptions& options, const em::Stages& stages,
+                              TrialKind requested, bool budget) {
+  if (requested == TrialKind::exact) return {TrialKind::exact, "the exact trial was asked for"};
+  constexpr const char* kBudget =
+      "the uncertainty budget's one-at-a-time runs share the exact trial's random numbers";
+  if (requested == TrialKind::spectral && budget)
+    throw geometry::InvalidInput(std::string("the spectral trial cannot run with the uncertainty "
+                                             "budget: ") + kBudget + " (use the exact trial)");
+  if (budget) return {TrialKind::exact, kBudget};
+  const SpectralApplicability a = spectral_trial_applicability(model, best, options, stages);
+  if (a.applicable) return {TrialKind::spectral, a.reason};
+  if (requested == TrialKind::spectral)
+    throw geometry::InvalidInput("the spectral trial does not apply: " + a.reason);
+  return {TrialKind::exact, "the spectral trial does not apply: " + a.reason};
 }
 
 double SpectralRingModel::parameter_value(const Parameter& p, const em::ErrorDraw& d) const {
@@ -379,7 +480,7 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
     }
   }
 
-  // The bound (header; docs/uncertainty.md).
+  // The bound (header; docs/validation.md, "The spectral trial").
   bound_.systematic_order = systematic_order_;
   bound_.white_order = white_order_;
   bound_.truncation_mm = (count > 0 ? tail[systematic_order_] : 0.0) + white_tail;
@@ -507,22 +608,21 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
   }
   const std::size_t n = m.n_;
   if (m.options_.reference == ReferenceCircle::least_squares) {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    const double* f = m.filtered_ls_.data();
-    const double* g = synthesized_.data();
-    for (std::size_t j = 0; j < n; ++j) {
-      const double d = kappa * f[j] + g[j];
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
-    y.roundness_mm = hi - lo;
+    // In place (Eigen's packet max/min: vectorised, unlike a scalar std::max reduction).
+    Eigen::Map<Eigen::ArrayXd> d(synthesized_.data(), static_cast<Eigen::Index>(n));
+    d += kappa * Eigen::Map<const Eigen::ArrayXd>(m.filtered_ls_.data(),
+                                                  static_cast<Eigen::Index>(n));
+    y.roundness_mm = d.maxCoeff() - d.minCoeff();
     return y;
   }
   for (std::size_t j = 0; j < n; ++j) {
-    const double r = m.radius_ + kappa * m.filtered_[j] + synthesized_[j];
+    synthesized_[j] += kappa * m.filtered_[j];  // the deviation about (c₀, R₀)
+    const double r = m.radius_ + synthesized_[j];
     points_[j] = {r * m.cos_[j], r * m.sin_[j]};
   }
-  y.roundness_mm = ront_about(points_, m.options_.reference);
+  y.roundness_mm = m.options_.reference == ReferenceCircle::minimum_zone
+                       ? minimum_zone_ront_by_subset(points_, synthesized_, minimum_zone_)
+                       : ront_about(points_, m.options_.reference);
   return y;
 }
 

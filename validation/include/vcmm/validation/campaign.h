@@ -31,6 +31,7 @@
 #include "vcmm/validation/form_bias.h"
 #include "vcmm/validation/measurement_input.h"
 #include "vcmm/validation/reference_values.h"
+#include "vcmm/validation/trial_kind.h"
 
 namespace vcmm::validation {
 
@@ -92,6 +93,9 @@ struct EvaluationSettings {
   /// removed from the data) or "uncertainty_only" (not corrected, only in the uncertainty:
   /// errormodel::with_kinematics_uncorrected).
   bool kinematics_corrected = true;
+  /// "trial": "auto" (default: the spectral trial where it applies), "exact" or "spectral"
+  /// (trial_kind.h; the first Monte Carlo run of every measurement).
+  TrialKind trial = TrialKind::automatic;
   friend bool operator==(const EvaluationSettings&, const EvaluationSettings&) = default;
 };
 

@@ -77,6 +77,7 @@ struct MeasurementOutcome {
   std::size_t points = 0;
   std::uint64_t seed = 0;
   std::uint64_t trials = 0;
+  std::string trial = "exact";  ///< the first run's trial: "exact" or "spectral" (trial_kind.h)
   MeasurandOutcome diameter, roundness;
   std::string fingerprint;
   double wall_seconds = 0.0;  ///< time spent computing it (0 when loaded)

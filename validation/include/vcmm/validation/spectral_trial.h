@@ -1,6 +1,6 @@
 // vcmm/validation/spectral_trial.h — the spectral Monte Carlo trial of a ring measurement: the
 // trial of ring_experiment.h drawn as the in-band harmonics of the radial deviation instead of
-// point by point (docs/uncertainty.md, "The spectral trial": derivation, bound, validity).
+// point by point (docs/validation.md, "The spectral trial": derivation, bound, validity).
 //
 // Notation. Best estimate x̂: points p_j (j < n, an equiangular closed profile in index order),
 // LS circle (c₀, R₀), directions u_j = (p_j − c₀)/|p_j − c₀|, the filter's transmission
@@ -19,13 +19,15 @@
 // radial variance of one point (σ_r² (n·u)² + σ_noise²) — the exact law of the DFT of
 // independent Gaussian samples, for any n. Harmonic 1 is the LS (and filter) centre's and is
 // dropped; harmonics above K are below the truncation tolerance. RONt: LS = max − min of the
-// filtered deviations about the estimate's filtered LS circle; MZ, MI, MC: the exact geometry
-// fitters on the n filtered points at the estimate's directions.
+// filtered deviations about the estimate's filtered LS circle; MZ: the exact minimum zone of
+// the profile's extreme points, checked against all n filtered points
+// (minimum_zone_ront_by_subset); MI, MC: the exact geometry fitters on the n filtered points
+// at the estimate's directions.
 // Neglected (SpectralBound, per trial at 5 standard deviations of every drawn quantity):
 // second-order terms |δ|²/R₀, the kinematic errors evaluated at the estimate's machine
 // positions instead of the expanded and roughened ones, the harmonics above K, and the
 // harmonic 1 of the synthesised part about the true directions (real scans sit off the grid
-// by ε rad). For the 171 mm ring all of these are below 1 nm (docs/uncertainty.md).
+// by ε rad). For the 171 mm ring all of these are below 1 nm (docs/validation.md).
 // Random numbers: trial t draws from uncertainty::RandomStream(seed, t): the systematic
 // parameters by errormodel::draw_errors with the roughness and noise stages off (the same
 // distributions as the exact trial), then 1 + 2(K_w − 1) standard normals for the white
@@ -51,18 +53,9 @@
 #include "vcmm/uncertainty/monte_carlo.h"
 #include "vcmm/uncertainty/random_stream.h"
 #include "vcmm/validation/ring_evaluation.h"
+#include "vcmm/validation/trial_kind.h"
 
 namespace vcmm::validation {
-
-/// Which Monte Carlo trial an uncertainty evaluation runs.
-enum class TrialKind {
-  automatic,  ///< spectral where it applies (spectral_trial_applicability), else exact
-  exact,      ///< point by point (RingTrial)
-  spectral,   ///< in-band harmonics (SpectralRingTrial); refused where it does not apply
-};
-/// "auto", "exact", "spectral".
-std::string_view to_string(TrialKind kind);
-std::optional<TrialKind> trial_kind_from_string(std::string_view text);
 
 /// Whether the spectral trial applies to a best estimate, and if not why (a sentence naming
 /// the measurement property or option, for the result file and error messages).
@@ -81,6 +74,22 @@ SpectralApplicability spectral_trial_applicability(const errormodel::DigitalMode
                                                    const errormodel::Measurement& best,
                                                    const RingEvaluationOptions& options,
                                                    const errormodel::Stages& stages);
+
+/// The trial an uncertainty evaluation runs for its first Monte Carlo run, and why.
+struct TrialChoice {
+  TrialKind kind = TrialKind::exact;  ///< exact or spectral (never automatic)
+  std::string reason;                 ///< a sentence for the result file
+};
+
+/// Resolves `requested` for a best estimate: exact stays exact; spectral is checked
+/// (spectral_trial_applicability) and refused with InvalidInput naming the reason where it does
+/// not apply, and refused with an uncertainty budget (`budget`: its one-at-a-time runs share the
+/// exact trial's random numbers, ring_uncertainty_budget.h); automatic takes spectral where it
+/// applies and there is no budget, else exact, and says why.
+TrialChoice choose_ring_trial(const errormodel::DigitalModel& model,
+                              const errormodel::Measurement& best,
+                              const RingEvaluationOptions& options,
+                              const errormodel::Stages& stages, TrialKind requested, bool budget);
 
 /// What the spectral trial neglects, per trial, at 5 standard deviations of every drawn
 /// quantity (mm; file comment). Bounds on the difference from the exact trial's measurands.
@@ -145,6 +154,29 @@ class SpectralRingModel {
   SpectralBound bound_;
 };
 
+/// RONt about the minimum-zone circle of `points`, computed exactly from a subset: an annulus
+/// that is minimal for a subset S and contains every point is minimal for all points (their
+/// minimum width is at least S's, and this annulus achieves it). S starts as the peaks and
+/// valleys of `deviations` (radial, about any centre near the profile's: they only pick S)
+/// within a quarter of the peak-to-valley of the top or of the bottom, each with two
+/// neighbours either side — where the contacts of a smooth, band-limited profile lie; the
+/// minimum zone of S is checked against all points and the extremes of the violating lobes
+/// (with their neighbours) are added until no point is outside (at most 6 rounds, then the
+/// minimum zone of all points). Returns the
+/// spread of the distances of all points about S's centre: S's width to rounding, i.e.
+/// geometry::minimum_zone_circle(points).ron.ront to ~1e-13 mm at R ~ 100 mm. `scratch` is
+/// reused between calls. Preconditions: ≥ 8 points and one deviation each (InvalidInput); throws
+/// as minimum_zone_circle. O(n) passes + the minimum zone of |S| points (|S| ~ 10–20 % of n
+/// on the filtered example ring).
+struct MinimumZoneScratch {
+  std::vector<geometry::Point2> subset;  ///< S at the end (its size: how much was needed)
+  std::vector<unsigned char> member, flag;
+  std::vector<double> squared_distance;
+};
+double minimum_zone_ront_by_subset(std::span<const geometry::Point2> points,
+                                   std::span<const double> deviations,
+                                   MinimumZoneScratch& scratch);
+
 /// One worker's spectral trial (scratch buffers; not safe to share between threads).
 class SpectralRingTrial {
  public:
@@ -164,6 +196,7 @@ class SpectralRingTrial {
   Eigen::VectorXd theta_, harmonics_;
   std::vector<double> white_, a_, b_, synthesized_;
   std::vector<geometry::Point2> points_;
+  MinimumZoneScratch minimum_zone_;
   geometry::EquiangularTransform transform_;
 };
 

@@ -46,12 +46,9 @@ em::Measurement measured_ring(Eigen::Index n) {
   return em::simulate(truth, example_model(), em::draw_errors(example_model(), truth, rng));
 }
 
-void BM_RingTrial(benchmark::State& state) {
-  const em::Measurement best =
-      em::correct(measured_ring(state.range(0)), example_model());
-  va::RingTrial trial(example_model(),
-                      std::make_shared<const em::PreparedMeasurement>(best, example_model()), {},
-                      em::Stages::all());
+/// Times one trial a benchmark iteration (trial t on RandomStream(1, t)); items = trials.
+template <class Trial>
+void time_trials(benchmark::State& state, Trial& trial) {
   double out[2];
   std::uint64_t t = 0;
   for (auto _ : state) {
@@ -60,6 +57,15 @@ void BM_RingTrial(benchmark::State& state) {
     benchmark::DoNotOptimize(out);
   }
   state.SetItemsProcessed(state.iterations());
+}
+
+void BM_RingTrial(benchmark::State& state) {
+  const em::Measurement best =
+      em::correct(measured_ring(state.range(0)), example_model());
+  va::RingTrial trial(example_model(),
+                      std::make_shared<const em::PreparedMeasurement>(best, example_model()), {},
+                      em::Stages::all());
+  time_trials(state, trial);
 }
 BENCHMARK(BM_RingTrial)->Arg(3600)->Arg(360)->Unit(benchmark::kMicrosecond);
 
@@ -143,14 +149,7 @@ void BM_SpectralTrial(benchmark::State& state) {
   e.reference = spectral_circle(state.range(1));
   va::SpectralRingTrial trial(
       std::make_shared<const va::SpectralRingModel>(example_model(), best, e, em::Stages::all()));
-  double out[2];
-  std::uint64_t t = 0;
-  for (auto _ : state) {
-    vcmm::uncertainty::RandomStream rng(1, t++);
-    trial(rng, out);
-    benchmark::DoNotOptimize(out);
-  }
-  state.SetItemsProcessed(state.iterations());
+  time_trials(state, trial);
   state.SetLabel(std::string(va::to_string(e.reference)));
 }
 BENCHMARK(BM_SpectralTrial)

@@ -168,30 +168,28 @@ double minimum_zone_ront_by_subset(std::span<const geometry::Point2> points,
                                  " points and " + std::to_string(d.size()) + " deviations");
   std::vector<geometry::Point2>& subset = scratch.subset;
   std::vector<unsigned char>& member = scratch.member;
-  std::vector<unsigned char>& flag = scratch.flag;
+  std::vector<double>& flag = scratch.flag;
   std::vector<double>& r2 = scratch.squared_distance;
   member.assign(n, 0);
   flag.resize(n);
   subset.clear();
-  // Peaks of v above `top` and valleys below `bottom` (cyclic; flags computed branch-free so
-  // that the pass vectorises), each joining S with its neighbours. Returns how many of them
-  // were not in S yet.
+  // Peaks of v at or above `top` and valleys at or below `bottom` (cyclic), each joining S with
+  // its neighbours; returns how many of them were not in S yet. The indicator
+  // max(min(x − a, x − b, x − top), min(a − x, b − x, bottom − x)) ≥ 0 (a, b the neighbours'
+  // values) is min/max arithmetic, which the compiler vectorises (comparisons into flags it
+  // does not, and this pass is most of the function's own time).
   const auto take_extremes = [&](const double* v, double top, double bottom) {
-    const auto extreme = [&](std::size_t j, std::size_t prev, std::size_t next) {
-      const double x = v[j], a = v[prev], b = v[next];
-      return static_cast<unsigned char>(((x > top) & (x >= a) & (x >= b)) |
-                                        ((x < bottom) & (x <= a) & (x <= b)));
+    const auto indicator = [top, bottom](double x, double a, double b) {
+      return std::max(std::min(std::min(x - a, x - b), x - top),
+                      std::min(std::min(a - x, b - x), bottom - x));
     };
-    flag[0] = extreme(0, n - 1, 1);
-    for (std::size_t j = 1; j + 1 < n; ++j) {
-      const double x = v[j], a = v[j - 1], b = v[j + 1];
-      flag[j] = static_cast<unsigned char>(((x > top) & (x >= a) & (x >= b)) |
-                                           ((x < bottom) & (x <= a) & (x <= b)));
-    }
-    flag[n - 1] = extreme(n - 1, n - 2, 0);
+    double* __restrict f = flag.data();
+    f[0] = indicator(v[0], v[n - 1], v[1]);
+    for (std::size_t j = 1; j + 1 < n; ++j) f[j] = indicator(v[j], v[j - 1], v[j + 1]);
+    f[n - 1] = indicator(v[n - 1], v[n - 2], v[0]);
     std::size_t taken = 0;
     for (std::size_t j = 0; j < n; ++j) {
-      if (!flag[j]) continue;
+      if (f[j] < 0.0) continue;
       taken += member[j] ? 0 : 1;
       for (std::size_t k = n + j - kNeighbours; k <= n + j + kNeighbours; ++k) {
         if (!member[k % n]) {

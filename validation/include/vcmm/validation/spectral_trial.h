@@ -170,8 +170,8 @@ class SpectralRingModel {
 /// on the filtered example ring).
 struct MinimumZoneScratch {
   std::vector<geometry::Point2> subset;  ///< S at the end (its size: how much was needed)
-  std::vector<unsigned char> member, flag;
-  std::vector<double> squared_distance;
+  std::vector<unsigned char> member;
+  std::vector<double> flag, squared_distance;
 };
 double minimum_zone_ront_by_subset(std::span<const geometry::Point2> points,
                                    std::span<const double> deviations,

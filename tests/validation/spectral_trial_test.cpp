@@ -216,14 +216,14 @@ uncertainty::MonteCarloResult run(const uncertainty::ExperimentFactory& f, std::
 /// of both measurands within 4 combined standard errors.
 void expect_same_distribution(em::ProbingMode mode, Eigen::Index n, const Eigen::Vector3d& where,
                               ReferenceCircle c, std::uint64_t exact_trials,
-                              std::uint64_t spectral_trials) {
+                              std::uint64_t spectral_trials,
+                              const em::Stages& stages = em::Stages::all()) {
   const em::DigitalModel& model = example_model();
   const auto best = ring(mode, n, where);
   const RingEvaluationOptions o = with_reference(c);
-  const auto exact =
-      run(ring_experiment_factory(model, best, o, em::Stages::all()), exact_trials, 11);
-  const auto spectral = run(spectral_ring_experiment_factory(model, best, o, em::Stages::all()),
-                            spectral_trials, 12);
+  const auto exact = run(ring_experiment_factory(model, best, o, stages), exact_trials, 11);
+  const auto spectral =
+      run(spectral_ring_experiment_factory(model, best, o, stages), spectral_trials, 12);
   for (const std::size_t q : {std::size_t{diameter}, std::size_t{roundness}}) {
     const Moments e = moments(exact, q), s = moments(spectral, q);
     const auto check = [&](const char* what, double ve, double vs, double se_e, double se_s) {
@@ -268,6 +268,19 @@ TEST(SpectralTrialDistribution, TouchCornerLeastSquaresAndMaximumInscribed) {
                            ReferenceCircle::least_squares, 20000, 40000);
   expect_same_distribution(em::ProbingMode::touch_trigger, 360, kCorner,
                            ReferenceCircle::maximum_inscribed, 20000, 40000);
+}
+
+// The white parts alone (roughness and noise: where the spectral trial draws other numbers
+// than the exact one, as exact Gaussian harmonics): a wrong variance would show at once (the
+// diameter's u is 2√(v/n), the roundness is all noise).
+TEST(SpectralTrialDistribution, WhitePartsAloneScanningAndTouch) {
+  const em::Stages white = em::Stages::none()
+                               .set(em::ErrorSource::roughness, true)
+                               .set(em::ErrorSource::noise, true);
+  expect_same_distribution(em::ProbingMode::scanning, 3600, kCentre,
+                           ReferenceCircle::minimum_zone, 6000, 30000, white);
+  expect_same_distribution(em::ProbingMode::touch_trigger, 360, kCorner,
+                           ReferenceCircle::least_squares, 20000, 40000, white);
 }
 
 // Same seed, any thread count: the same samples.

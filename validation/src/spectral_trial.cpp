@@ -188,7 +188,16 @@ double minimum_zone_ront_by_subset(std::span<const geometry::Point2> points,
     for (std::size_t j = 1; j + 1 < n; ++j) f[j] = indicator(v[j], v[j - 1], v[j + 1]);
     f[n - 1] = indicator(v[n - 1], v[n - 2], v[0]);
     std::size_t taken = 0;
+    constexpr std::size_t kBlock = 8;  // one well-predicted branch per block of 8 values
     for (std::size_t j = 0; j < n; ++j) {
+      if (j % kBlock == 0 && j + kBlock <= n) {
+        double m = f[j];
+        for (std::size_t i = 1; i < kBlock; ++i) m = std::max(m, f[j + i]);
+        if (m < 0.0) {
+          j += kBlock - 1;
+          continue;
+        }
+      }
       if (f[j] < 0.0) continue;
       taken += member[j] ? 0 : 1;
       for (std::size_t k = n + j - kNeighbours; k <= n + j + kNeighbours; ++k) {
@@ -606,10 +615,12 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
   }
   const std::size_t n = m.n_;
   if (m.options_.reference == ReferenceCircle::least_squares) {
-    // In place (Eigen's packet max/min: vectorised, unlike a scalar std::max reduction).
-    Eigen::Map<Eigen::ArrayXd> d(synthesized_.data(), static_cast<Eigen::Index>(n));
-    d += kappa * Eigen::Map<const Eigen::ArrayXd>(m.filtered_ls_.data(),
-                                                  static_cast<Eigen::Index>(n));
+    // Eigen's packet max/min (vectorised, unlike a scalar std::max reduction), evaluated
+    // lazily: two passes, nothing stored.
+    const auto d = kappa * Eigen::Map<const Eigen::ArrayXd>(m.filtered_ls_.data(),
+                                                           static_cast<Eigen::Index>(n)) +
+                   Eigen::Map<const Eigen::ArrayXd>(synthesized_.data(),
+                                                    static_cast<Eigen::Index>(n));
     y.roundness_mm = d.maxCoeff() - d.minCoeff();
     return y;
   }

@@ -16,7 +16,6 @@
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/errormodel/random_source.h"
 #include "vcmm/errormodel/ring_gauge.h"
-#include "vcmm/geometry/minimum_zone.h"
 #include "vcmm/validation/ring_experiment.h"
 
 namespace vcmm::validation {
@@ -129,36 +128,6 @@ TEST(SpectralTrial, BoundIsBelowOneNanometreForTheExampleRing) {
                 m.bound().second_order_mm, m.bound().kinematic_position_mm,
                 m.bound().grid_offset_mm, m.bound().diameter_mm, m.bound().roundness_mm);
   }
-}
-
-// The minimum zone from a subset equals the minimum zone of all points: smooth form, form plus
-// noise (filtered and not), pure noise, few points, a lobed profile. Seeds in the messages.
-TEST(SpectralTrial, MinimumZoneFromASubsetIsTheMinimumZoneOfAllPoints) {
-  MinimumZoneScratch scratch;
-  std::vector<geometry::Point2> points;
-  std::vector<double> deviation;
-  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
-    em::SeededRandomSource rng(seed);
-    const std::size_t n = seed % 4 == 0 ? 60 : 3600;
-    const double noise_mm = seed % 3 == 0 ? 0.0 : 1e-3 * rng.uniform();
-    const double form_mm = seed % 5 == 0 ? 0.0 : 2e-3 * rng.uniform();
-    const double lobes = 2.0 + static_cast<double>(seed % 7);
-    const double phase = 6.0 * rng.uniform();
-    points.resize(n);
-    deviation.resize(n);
-    for (std::size_t j = 0; j < n; ++j) {
-      const double t = 2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(n);
-      deviation[j] = form_mm * std::cos(lobes * t + phase) + noise_mm * rng.standard_normal() +
-                     1e-6 * std::cos(17 * t);
-      const double r = 85.5 + deviation[j];
-      points[j] = {3.0 + r * std::cos(t), -2.0 + r * std::sin(t)};  // off-centre: any frame
-    }
-    const double exact = geometry::minimum_zone_circle(points).ron.ront;
-    const double fast = minimum_zone_ront_by_subset(points, deviation, scratch);
-    EXPECT_NEAR(fast, exact, 1e-12) << "seed " << seed << ", n " << n;
-  }
-  EXPECT_THROW(minimum_zone_ront_by_subset(points, std::vector<double>(3), scratch),
-               geometry::InvalidInput);
 }
 
 // ---- in distribution ---------------------------------------------------------------------------

@@ -21,8 +21,8 @@
 // dropped; harmonics above K are below the truncation tolerance. RONt: LS = max − min of the
 // filtered deviations about the estimate's filtered LS circle; MZ: the exact minimum zone of
 // the profile's extreme points, checked against all n filtered points
-// (minimum_zone_ront_by_subset); MI, MC: the exact geometry fitters on the n filtered points
-// at the estimate's directions.
+// (geometry::minimum_zone_ront_from_extremes); MI, MC: the exact geometry fitters on the n
+// filtered points at the estimate's directions.
 // Neglected (SpectralBound, per trial at 5 standard deviations of every drawn quantity):
 // second-order terms |δ|²/R₀, the kinematic errors evaluated at the estimate's machine
 // positions instead of the expanded and roughened ones, the harmonics above K, and the
@@ -49,6 +49,7 @@
 #include "vcmm/errormodel/measurement.h"
 #include "vcmm/errormodel/virtual_cmm.h"
 #include "vcmm/geometry/equiangular_transform.h"
+#include "vcmm/geometry/minimum_zone_from_extremes.h"
 #include "vcmm/geometry/point.h"
 #include "vcmm/uncertainty/monte_carlo.h"
 #include "vcmm/uncertainty/random_stream.h"
@@ -154,29 +155,6 @@ class SpectralRingModel {
   SpectralBound bound_;
 };
 
-/// RONt about the minimum-zone circle of `points`, computed exactly from a subset: an annulus
-/// that is minimal for a subset S and contains every point is minimal for all points (their
-/// minimum width is at least S's, and this annulus achieves it). S starts as the peaks and
-/// valleys of `deviations` (radial, about any centre near the profile's: they only pick S)
-/// within a quarter of the peak-to-valley of the top or of the bottom, each with two
-/// neighbours either side — where the contacts of a smooth, band-limited profile lie; the
-/// minimum zone of S is checked against all points and the extremes of the violating lobes
-/// (with their neighbours) are added until no point is outside (at most 6 rounds, then the
-/// minimum zone of all points). Returns the
-/// spread of the distances of all points about S's centre: S's width to rounding, i.e.
-/// geometry::minimum_zone_circle(points).ron.ront to ~1e-13 mm at R ~ 100 mm. `scratch` is
-/// reused between calls. Preconditions: ≥ 8 points and one deviation each (InvalidInput); throws
-/// as minimum_zone_circle. O(n) passes + the minimum zone of |S| points (|S| ~ 10–20 % of n
-/// on the filtered example ring).
-struct MinimumZoneScratch {
-  std::vector<geometry::Point2> subset;  ///< S at the end (its size: how much was needed)
-  std::vector<unsigned char> member;
-  std::vector<double> flag, squared_distance;
-};
-double minimum_zone_ront_by_subset(std::span<const geometry::Point2> points,
-                                   std::span<const double> deviations,
-                                   MinimumZoneScratch& scratch);
-
 /// One worker's spectral trial (scratch buffers; not safe to share between threads).
 class SpectralRingTrial {
  public:
@@ -196,7 +174,7 @@ class SpectralRingTrial {
   Eigen::VectorXd theta_, harmonics_;
   std::vector<double> white_, a_, b_, synthesized_;
   std::vector<geometry::Point2> points_;
-  MinimumZoneScratch minimum_zone_;
+  geometry::MinimumZoneScratch minimum_zone_;
   geometry::EquiangularTransform transform_;
 };
 

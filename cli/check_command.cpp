@@ -22,6 +22,7 @@
 #include "commands.h"
 #include "option_values.h"
 #include "run_control.h"
+#include "vcmm/geometry/text_file.h"
 #include "vcmm/geometry/claim_check.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/point_io.h"
@@ -259,8 +260,7 @@ std::string outcome_csv(const Outcome& o) {
 /// line, `#` comments; paths relative to the claims file's directory.
 std::vector<std::pair<std::string, g::ClaimedCircle>> read_claims(const std::string& path,
                                                                   double to_mm) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open the claims file");
+  std::istringstream in(g::read_text_file(path, "claims file"));
   const fs::path base = fs::path(path).parent_path();
   std::vector<std::pair<std::string, g::ClaimedCircle>> out;
   std::string line;

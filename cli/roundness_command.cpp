@@ -284,6 +284,9 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& args, boo
         if (entry.is_regular_file() && entry.path().extension() == ".csv")
           found.push_back(entry.path().string());
       if (ec) throw errormodel::OutputError(a + ": cannot list the directory: " + ec.message());
+      // An empty table with exit 0 would read as "all profiles passed".
+      if (found.empty())
+        throw g::InvalidInput(a + ": the directory holds no profile (*.csv) files");
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     } else {

@@ -1,9 +1,10 @@
-// `vcmm validate CAMPAIGN.json -o OUTDIR [--threads T] [--denoised] [--progress ...]`
+// `vcmm validate CAMPAIGN.json -o OUTDIR [--threads T] [--denoised]
+//                [--budget [--budget-trials N]] [--progress ...]`
 //   runs the uncertainty evaluation of every measurement of a campaign, compares with the
 //   reference values (E_n, zeta) under the bias treatments, and writes the tables; resumable.
 // `vcmm demo -o OUTDIR [--model MODEL.json] [--trials M] [--seed S] [--world-seed W]
 //            [--reference MI|MZ|LS|MC] [--form-scale F] [--kinematics corrected|uncorrected]
-//            [--bias-treatment shrinkage|paper] ...`
+//            [--bias-treatment shrinkage|paper] [--budget [--budget-trials N]] ...`
 //   builds the synthetic ground-truth world (docs/demo.md), writes it as a campaign into
 //   OUTDIR/world and validates it, with the true values known.
 // (docs/validation.md, docs/cli.md.)
@@ -19,6 +20,7 @@
 #include "commands.h"
 #include "option_values.h"
 #include "run_control.h"
+#include "vcmm/geometry/text_file.h"
 #include "vcmm/errormodel/digital_model.h"
 #include "vcmm/validation/campaign.h"
 #include "vcmm/validation/campaign_run.h"
@@ -43,6 +45,8 @@ struct CampaignCliOptions {
   std::string campaign, output, model;
   unsigned threads = 0;
   bool denoised = false;
+  bool budget = false;
+  std::uint64_t budget_trials = 0;  // 0: the campaign's (else the measurement's trials)
   std::string progress = "auto";
   std::string trial;  // --trial: empty = the campaign's "trial" (validate) or auto (demo)
   // demo only
@@ -129,18 +133,56 @@ int guarded(const char* name, Body body) {
   }
 }
 
+/// `--budget [--budget-trials N]` onto the evaluation settings `ev` (whose trials come from
+/// `trials_source`); returns the usage error, "" when the options fit. Without --budget the
+/// settings stay as they are (a campaign file may ask for the budget itself).
+std::string apply_budget_options(const CampaignCliOptions& o, va::EvaluationSettings& ev,
+                                 const std::string& trials_source) {
+  if (!o.budget) return {};
+  if (o.budget_trials > ev.trials)
+    return "--budget-trials " + std::to_string(o.budget_trials) + " exceeds the " +
+           std::to_string(ev.trials) + " trials per measurement (" + trials_source +
+           "): each budget run is compared with the full run over the same trials";
+  ev.budget = true;
+  if (o.budget_trials != 0) ev.budget_trials = o.budget_trials;
+  return {};
+}
+
+/// The budget options as given, for the command line recorded in run_info.json.
+std::string budget_arguments(const CampaignCliOptions& o) {
+  if (!o.budget) return {};
+  return " --budget" +
+         (o.budget_trials != 0 ? " --budget-trials " + std::to_string(o.budget_trials) : "");
+}
+
 int run_validate(const CampaignCliOptions& o) {
   return guarded("validate", [&] {
     va::Campaign campaign = va::read_campaign_file(o.campaign);
     if (!o.trial.empty()) campaign.evaluation.trial = *va::trial_kind_from_string(o.trial);
-    return run_campaign_cli(
-        campaign, o.output, o, {}, "validate",
-        {{"command", "vcmm validate " + o.campaign + " -o " + o.output +
-                         (o.trial.empty() ? std::string() : " --trial " + o.trial)}});
+    const std::string usage =
+        apply_budget_options(o, campaign.evaluation, "evaluation.trials of " + o.campaign);
+    if (!usage.empty()) {
+      std::fprintf(stderr, "vcmm validate: error: %s\n", usage.c_str());
+      return static_cast<int>(kUsage);
+    }
+    return run_campaign_cli(campaign, o.output, o, {}, "validate",
+                            {{"command", "vcmm validate " + o.campaign + " -o " + o.output +
+                                             (o.trial.empty() ? std::string() : " --trial " + o.trial) +
+                                             (o.denoised ? " --denoised" : "") +
+                                             budget_arguments(o)}});
   });
 }
 
 int run_demo(const CampaignCliOptions& o) {
+  {
+    va::EvaluationSettings ev;
+    ev.trials = o.trials;
+    const std::string usage = apply_budget_options(o, ev, "--trials");
+    if (!usage.empty()) {  // before the world is built
+      std::fprintf(stderr, "vcmm demo: error: %s\n", usage.c_str());
+      return kUsage;
+    }
+  }
   return guarded("demo", [&] {
     std::string text;
     std::string model_name = o.model;
@@ -148,11 +190,7 @@ int run_demo(const CampaignCliOptions& o) {
       text = std::string(va::bundled_example_model_json());
       model_name = "the bundled example model (examples/cmm_model.json)";
     } else {
-      std::ifstream in(o.model, std::ios::binary);
-      if (!in) throw std::invalid_argument("cannot read the model file '" + o.model + "'");
-      std::ostringstream os;
-      os << in.rdbuf();
-      text = os.str();
+      text = geometry::read_text_file(o.model, "digital-model file");
     }
     const errormodel::DigitalModel model =
         errormodel::parse_digital_model(text, o.model.empty() ? "examples/cmm_model.json" : o.model);
@@ -170,6 +208,7 @@ int run_demo(const CampaignCliOptions& o) {
     ev.kinematics_corrected = o.kinematics == "corrected";
     ev.bias_treatment = *va::roundness_bias_treatment_from_string(o.bias_treatment);
     if (!o.trial.empty()) ev.trial = *va::trial_kind_from_string(o.trial);
+    apply_budget_options(o, ev, "--trials");  // checked above
     const std::filesystem::path world_dir = std::filesystem::path(o.output) / "world";
     auto truth = va::write_demo_campaign(world, text, ev, world_dir);
     const va::Campaign campaign = va::read_campaign_file(world_dir / "campaign.json");
@@ -185,7 +224,7 @@ int run_demo(const CampaignCliOptions& o) {
                          " --form-scale " + internal_shortest(o.form_scale) + " --kinematics " +
                          o.kinematics + " --bias-treatment " + o.bias_treatment +
                          (o.trial.empty() ? std::string() : " --trial " + o.trial) +
-                         (o.denoised ? " --denoised" : "")},
+                         (o.denoised ? " --denoised" : "") + budget_arguments(o)},
          {"world", (world_dir / "campaign.json").string()},
          {"form_scale", internal_shortest(o.form_scale)}});
   });
@@ -199,6 +238,14 @@ void add_common(CLI::App* cmd, CampaignCliOptions& o) {
       ->default_val(0);
   cmd->add_flag("--denoised", o.denoised,
                 "also run treatment (b) (one more Monte Carlo, on the denoised profile)");
+  auto* budget = cmd->add_flag(
+      "--budget", o.budget,
+      "also the uncertainty budget of every measurement: each error source alone on the same "
+      "random numbers (one more run per source; budget.csv; docs/validation.md)");
+  cmd->add_option("--budget-trials", o.budget_trials,
+                  "trials of each budget run (default and at most: the trials per measurement)")
+      ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}))
+      ->needs(budget);
   cmd->add_option("--progress", o.progress,
                   "progress bar on stderr: auto (when a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}))

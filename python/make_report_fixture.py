@@ -5,7 +5,7 @@ directory"), so that python/vcmm_report.py can be developed and tested without t
 programs.
 
 Usage:  /usr/bin/python3 python/make_report_fixture.py OUTDIR [--seed S] [--trials M]
-        [--validate] [--denoised] [--bias-treatment shrinkage|paper]
+        [--validate] [--denoised] [--budget] [--bias-treatment shrinkage|paper]
         [--locations C,L1,... [--orientations 0,90,...]]
 
 By default the plan is the demo's: 7 locations at 0° (C, L1-L4, E1, E2; ids like
@@ -28,6 +28,8 @@ honour are the relations between the columns that a reader may check:
   sign), zeta the same with standard uncertainties, E_n of treatment (c) with
   U = k u + |bias_paper|; treatment (b) only with --denoised (else its columns are empty);
 - summary.csv and treatments.csv are computed from results.csv;
+- with --budget, budget.csv: per measurement and error source u and share u_i^2 / sum u_j^2
+  (the shares add up to 1), the quadrature sum and its ratio to the full run's u;
 - the residual profiles are harmonic forms (ring lobing rotating with the orientation, a
   location-dependent 2-lobe machine error) plus noise, with the filtered column produced by
   the ISO 16610-21 Gaussian transmission H(k) = exp(-pi (alpha k / f_c)^2) applied by FFT.
@@ -173,7 +175,8 @@ def treatments_of(measurand, est, u, bias_paper, trials, true_value, bias_treatm
 def write_fixture(outdir, *, seed=20240605, setups=None, locations=None,
                   orientations_deg=None, heights=DEMO_HEIGHTS,
                   modes=("scanning", "touch_trigger"), trials=1000, validate=False,
-                  denoised=False, bias_treatment="shrinkage", missing_reference=()):
+                  denoised=False, bias_treatment="shrinkage", missing_reference=(),
+                  budget=False):
     """Writes the synthetic output directory; returns the list of measurement ids (in the
     order of results.csv).  setups: [(id prefix, location, orientation_deg)]; default the
     demo's plan, or the grid of `locations` x `orientations_deg` when either is given."""
@@ -358,11 +361,58 @@ def write_fixture(outdir, *, seed=20240605, setups=None, locations=None,
                     "orientations_deg": list(dict.fromkeys(s[2] for s in setups)),
                     "heights": list(heights), "modes": list(modes)},
     }
+    if budget:
+        write_budget(outdir, [r for r in results if r["measurand"] == "diameter"], seed,
+                     min(trials, 500))
+        run_info["budget"] = True
+        run_info["budget_trials"] = min(trials, 500)
+        run_info["command"] += " --budget"
     if not validate:
         run_info["form_scale"] = "1"
     write_text_atomically(os.path.join(outdir, "run_info.json"),
                           json.dumps(run_info, indent=2) + "\n")
     return ids
+
+
+# Typical one-at-a-time u (um) of each error source, per mode and measurand: (diameter,
+# roundness).  Scanning: the numbers of docs/validation.md's budget example; touch-trigger: 36
+# points, so the noise and the roughness weigh more.
+BUDGET_SOURCES = ("roughness", "temperature", "kinematic", "probe", "noise")
+BUDGET_U_UM = {
+    "scanning": {"roughness": (0.002, 0.006), "temperature": (0.20, 4e-7),
+                 "kinematic": (0.048, 0.036), "probe": (0.20, 0.27), "noise": (0.023, 0.059)},
+    "touch_trigger": {"roughness": (0.015, 0.05), "temperature": (0.20, 1e-7),
+                      "kinematic": (0.045, 0.03), "probe": (0.20, 0.15), "noise": (0.06, 0.10)},
+}
+
+
+def write_budget(outdir, rows, seed, trials):
+    """budget.csv as `vcmm validate --budget` writes it, for the measurements of `rows` (one
+    results row each): per source u (um) and share u_i^2 / sum u_j^2, the quadrature sum with
+    its ratio to the full u (diameter ~1, roundness 1.02-1.12: RONt is not additive) and the
+    full u.  Its own random stream (seed + 1), so the other files do not change."""
+    rng = np.random.default_rng(seed + 1)
+    lines = ["id,location,orientation_deg,height,mode,trials,source,evaluated,u_diameter_um,"
+             "share_diameter,u_roundness_um,share_roundness,ratio_diameter,ratio_roundness"]
+    for r in rows:
+        head = (f"{r['id']},{r['location']},{fmt(r['orientation_deg'])},{r['height']},"
+                f"{r['mode']},{trials},")
+        u = {source: [value * float(rng.uniform(0.85, 1.15)) for value in
+                      BUDGET_U_UM.get(r["mode"], BUDGET_U_UM["scanning"])[source]]
+             for source in BUDGET_SOURCES}
+        total = [sum(u[source][k] ** 2 for source in BUDGET_SOURCES) for k in (0, 1)]
+        for source in BUDGET_SOURCES:
+            lines.append(head + f"{source},true,{fmt(u[source][0])},"
+                         f"{fmt(u[source][0] ** 2 / total[0])},{fmt(u[source][1])},"
+                         f"{fmt(u[source][1] ** 2 / total[1])},,")
+        quadrature = [math.sqrt(t) for t in total]
+        ratio = [1.0 + float(rng.normal(0.0, 1.0 / math.sqrt(2.0 * trials))),
+                 float(rng.uniform(1.02, 1.12))]
+        lines.append(head + f"quadrature_sum,,{fmt(quadrature[0])},,{fmt(quadrature[1])},,"
+                     f"{fmt(ratio[0])},{fmt(ratio[1])}")
+        lines.append(head + f"full_run,,{fmt(quadrature[0] / ratio[0])},,"
+                     f"{fmt(quadrature[1] / ratio[1])},,,")
+    write_text_atomically(os.path.join(outdir, "budget.csv"), "\n".join(lines) + "\n")
 
 
 def main(argv=None):
@@ -382,6 +432,8 @@ def main(argv=None):
                         help="no truth, no treatments.csv")
     parser.add_argument("--denoised", action="store_true",
                         help="fill treatment (b)'s columns (vcmm --denoised)")
+    parser.add_argument("--budget", action="store_true",
+                        help="write budget.csv (vcmm --budget: the uncertainty budget)")
     parser.add_argument("--bias-treatment", choices=("shrinkage", "paper"),
                         default="shrinkage", help="the roundness's default treatment")
     args = parser.parse_args(argv)
@@ -398,7 +450,8 @@ def main(argv=None):
                         locations=(None if args.locations is None
                                    else tuple(args.locations.split(","))),
                         orientations_deg=orientations, validate=args.validate,
-                        denoised=args.denoised, bias_treatment=args.bias_treatment)
+                        denoised=args.denoised, bias_treatment=args.bias_treatment,
+                        budget=args.budget)
     print(f"wrote {len(ids)} synthetic measurements to {args.outdir}")
     return 0
 

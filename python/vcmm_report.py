@@ -9,6 +9,7 @@ OUTDIR is the output directory of `vcmm validate CAMPAIGN.json -o OUTDIR` or
 and docs/validation.md "Output directory"):
   results.csv, summary.csv                 required
   treatments.csv, run_info.json            optional (demo / provenance)
+  budget.csv                               optional (--budget: the uncertainty budget)
   samples/<id>.csv, residuals/<id>.csv     optional; read only for the measurements shown
   results.json, summary.json               only linked from the report
 Writes every figure as OUTDIR/figures/NAME.svg, NAME.pdf and NAME.png (matplotlib, Agg backend,
@@ -93,6 +94,14 @@ SUMMARY_COLUMNS = ("factor", "level", "measurand", "treatment", "n", "share_abs_
                    "mean_En", "rms_En")
 TREATMENTS_COLUMNS = ("measurand", "treatment", "n", "mean_En", "rms_En", "share_abs_En_le_1",
                       "mean_error", "rms_error", "unit")
+BUDGET_COLUMNS = ("id", "mode", "trials", "source", "evaluated", "u_diameter_um",
+                  "share_diameter", "u_roundness_um", "share_roundness", "ratio_diameter",
+                  "ratio_roundness")
+# Rows of budget.csv after a measurement's error sources: √Σu_i² (with its ratio to the full
+# u) and the full run's u over the same trials.
+BUDGET_SUM_ROWS = ("quadrature_sum", "full_run")
+# Bar colour of each probing mode in the budget figure.
+MODE_COLORS = {"scanning": "C0", "touch_trigger": "C3"}
 SAMPLES_COLUMNS = ("diameter_mm", "roundness_um")
 RESIDUALS_COLUMNS = ("angle_deg", "deviation_um", "filtered_deviation_um")
 
@@ -350,6 +359,7 @@ class Run:
     coverage_factor_source: str
     coverage_probability: float   # None when run_info.json does not state it
     default_treatments: dict      # measurand -> results.csv `treatment` (shrinkage, paper)
+    budgets: dict = dataclasses.field(default_factory=dict)   # id -> Budget (budget.csv)
 
     def default_treatment(self, measurand="roundness"):
         """The default bias treatment of a measurand ('shrinkage' or 'paper'), from the
@@ -577,6 +587,87 @@ def read_residuals(path):
     return Residuals(angle, deviation, filtered)
 
 
+@dataclasses.dataclass
+class Budget:
+    """One measurement's rows of budget.csv: per error source (in file order) its u (µm) and
+    share of Σu_j² for each measurand, and the ratio √Σu_i² / u of each measurand (None
+    where the full u is 0)."""
+    id: str
+    mode: str
+    trials: int
+    line: int
+    sources: dict = dataclasses.field(default_factory=dict)   # source -> {column: float}
+    ratio: dict = dataclasses.field(default_factory=dict)     # measurand -> float or None
+
+
+def read_budget(path, measurements):
+    """budget.csv of a run with --budget: id -> Budget.  Every id must be a measurement of
+    results.csv with the same mode; every measurement listed has its sources and both sum
+    rows, once each; u >= 0, shares in [0, 1]."""
+    by_id = {m.id: m for m in measurements}
+    budgets = {}
+    seen = {}                 # (id, source) -> line
+    for line, f in read_csv_table(path, BUDGET_COLUMNS):
+        mid = f["id"]
+        if mid not in by_id:
+            raise InputError(f"{path}: line {line}: measurement '{mid}' is not in "
+                             "results.csv")
+        mode = f["mode"]
+        if mode != by_id[mid].mode:
+            raise InputError(f"{path}: line {line}: measurement '{mid}' has mode '{mode}' but "
+                             f"'{by_id[mid].mode}' in results.csv")
+        source = require_label(f["source"], path, line, "source")
+        if (mid, source) in seen:
+            raise InputError(f"{path}: line {line}: source '{source}' of measurement '{mid}' "
+                             f"appears twice (first at line {seen[(mid, source)]})")
+        seen[(mid, source)] = line
+        trials = parse_count(f["trials"], path, line, "trials")
+        if trials < 2:
+            raise InputError(f"{path}: line {line}: column 'trials' must be >= 2 (a standard "
+                             f"deviation needs two samples); '{f['trials']}'")
+        b = budgets.setdefault(mid, Budget(mid, mode, trials, line))
+        if trials != b.trials:
+            raise InputError(f"{path}: line {line}: measurement '{mid}' has trials {trials} "
+                             f"but {b.trials} at line {b.line}")
+        if source in BUDGET_SUM_ROWS:
+            for column in ("u_diameter_um", "u_roundness_um"):
+                value = parse_number(f[column], path, line, column)
+                if value < 0.0:
+                    raise InputError(f"{path}: line {line}: column '{column}' must be >= 0; "
+                                     f"'{f[column]}'")
+            if source == "quadrature_sum":
+                for measurand in MEASURANDS:
+                    column = "ratio_" + measurand
+                    value = parse_number(f[column], path, line, column, optional=True)
+                    if value is not None and value < 0.0:
+                        raise InputError(f"{path}: line {line}: column '{column}' must be "
+                                         f">= 0; '{f[column]}'")
+                    b.ratio[measurand] = value
+            continue
+        require_choice(f["evaluated"], ("true", "false"), path, line, "evaluated")
+        values = {}
+        for column in ("u_diameter_um", "share_diameter", "u_roundness_um", "share_roundness"):
+            values[column] = parse_number(f[column], path, line, column)
+            if column.startswith("u_") and values[column] < 0.0:
+                raise InputError(f"{path}: line {line}: column '{column}' must be >= 0; "
+                                 f"'{f[column]}'")
+            if column.startswith("share_") and not 0.0 <= values[column] <= 1.0:
+                raise InputError(f"{path}: line {line}: column '{column}' must be a fraction "
+                                 f"in [0, 1]; '{f[column]}'")
+        b.sources[source] = values
+    for mid, b in budgets.items():
+        missing = [name for name in BUDGET_SUM_ROWS if (mid, name) not in seen]
+        if not b.sources or missing:
+            raise InputError(f"{path}: line {b.line}: measurement '{mid}' lacks "
+                             + (f"the row(s) {', '.join(missing)}" if missing else
+                                "its error-source rows"))
+        if list(b.sources) != list(next(iter(budgets.values())).sources):
+            raise InputError(f"{path}: line {b.line}: measurement '{mid}' has the sources "
+                             f"{', '.join(b.sources)}, the first measurement "
+                             f"{', '.join(next(iter(budgets.values())).sources)}")
+    return budgets
+
+
 def read_run_info(path):
     try:
         with open(path, encoding="utf-8") as f:
@@ -671,9 +762,12 @@ def load_run(outdir):
     measurements.sort(key=lambda m: (locations.index(m.location), m.orientation_deg,
                                      m.repeat, rank(m.height, HEIGHT_ORDER),
                                      rank(m.mode, MODE_ORDER), m.id))
+    budget_path = os.path.join(outdir, "budget.csv")
+    budgets = read_budget(budget_path, measurements) if os.path.exists(budget_path) else {}
     k, k_source = coverage_factor_of(run_info)
     return Run(outdir, measurements, locations, centre, bool(centres), columns, rows, summary,
-               treatments, run_info, k, k_source, coverage_probability_of(run_info), defaults)
+               treatments, run_info, k, k_source, coverage_probability_of(run_info), defaults,
+               budgets)
 
 
 # --------------------------------------------------------------------------------------------
@@ -849,6 +943,9 @@ class Figure:
     series: dict = dataclasses.field(default_factory=dict)
     # Axis limits that follow the data, e.g. {"polar": (low, high), "data": (min, max)}.
     limits: dict = dataclasses.field(default_factory=dict)
+    # Numbers drawn as bars, e.g. the budget's median shares (%) keyed (measurand, mode,
+    # source).
+    values: dict = dataclasses.field(default_factory=dict)
 
 
 def import_matplotlib():
@@ -1828,6 +1925,113 @@ def figure_factors(plt, np, run, path):
     return Figure(os.path.basename(path), "E_n by factor level", caption, texts)
 
 
+def quantile(values, q):
+    """The q-quantile of values by linear interpolation between order statistics (numpy's
+    default), values non-empty."""
+    ordered = sorted(values)
+    position = q * (len(ordered) - 1)
+    low = math.floor(position)
+    high = min(low + 1, len(ordered) - 1)
+    return ordered[low] + (position - low) * (ordered[high] - ordered[low])
+
+
+def ratio_range(budgets, measurand):
+    """(min, max) over the measurements of √Σu_i² / u of a measurand; None if none has it."""
+    ratios = [b.ratio.get(measurand) for b in budgets]
+    ratios = [r for r in ratios if r is not None]
+    return (min(ratios), max(ratios)) if ratios else None
+
+
+def figure_budget(plt, np, run, path):
+    """Per error source, the median over the measurements of one mode of its share of the
+    one-at-a-time variance sum u_i² / Σu_j², horizontal bars grouped by mode, one panel per
+    measurand; whiskers the quartiles."""
+    budgets = [run.budgets[m.id] for m in run.measurements if m.id in run.budgets]
+    sources = list(budgets[0].sources)
+    modes = sorted({b.mode for b in budgets}, key=lambda x: rank(x, MODE_ORDER))
+    count = {mode: sum(b.mode == mode for b in budgets) for mode in modes}
+    trials = sorted({b.trials for b in budgets})
+    fig, axes = plt.subplots(1, 2, figsize=(12.0, 1.8 + 0.45 * len(sources) * len(modes)),
+                             sharey=True)
+    y = np.arange(len(sources))
+    height = 0.8 / len(modes)
+    medians = {}
+    limits = {}
+    for ax, measurand in zip(axes, MEASURANDS):
+        column = "share_" + measurand
+        for j, mode in enumerate(modes):
+            shares = {src: [100.0 * b.sources[src][column] for b in budgets if b.mode == mode]
+                      for src in sources}
+            middle = [quantile(shares[src], 0.5) for src in sources]
+            low = [quantile(shares[src], 0.25) for src in sources]
+            high = [quantile(shares[src], 0.75) for src in sources]
+            positions = y + (j - (len(modes) - 1) / 2) * height
+            ax.barh(positions, middle, height * 0.9, color=MODE_COLORS.get(mode, f"C{4 + j}"),
+                    xerr=[[mm - lo for mm, lo in zip(middle, low)],
+                          [hi - mm for mm, hi in zip(middle, high)]],
+                    error_kw={"ecolor": "0.25", "elinewidth": 0.9, "capsize": 2.0})
+            for position, value, top in zip(positions, middle, high):
+                ax.annotate(f"{value:.1f} %" if value >= 0.05 else "< 0.1 %",
+                            (max(value, top), position), xytext=(4, 0),
+                            textcoords="offset points", va="center", fontsize=7)
+            for src, value in zip(sources, middle):
+                medians[(measurand, mode, src)] = value
+        ratios = ratio_range(budgets, measurand)
+        limits["ratio " + measurand] = ratios
+        ratio_text = ("" if ratios is None else
+                      r"$\sqrt{\sum u_i^2}\,/\,u$" + f" = {ratios[0]:.3f} … {ratios[1]:.3f} "
+                      "over the measurements")
+        if measurand == "diameter":
+            title = "diameter (LS): shares of $u^2$ (the $u_i$ add in quadrature)"
+        else:
+            title = "roundness (RONt): shares rank the sources only"
+        ax.set_title(title + ("\n" + ratio_text if ratio_text else ""), loc="left",
+                     fontsize=9)
+        ax.set_xlim(0.0, 118.0)
+        ax.set_xticks([0, 20, 40, 60, 80, 100])
+        ax.set_xlabel(r"median share $u_i^2 / \sum u_j^2$ over the measurements (%)")
+        ax.grid(False, axis="y")
+    axes[0].set_yticks(y, sources)
+    axes[0].invert_yaxis()              # stage order from the top
+    legend = [plt.Rectangle((0, 0), 1, 1, color=MODE_COLORS.get(mode, f"C{4 + j}"),
+                            label=f"{mode.replace('_', '-')} (n = {count[mode]})")
+              for j, mode in enumerate(modes)]
+    legend.append(plt.Line2D([], [], color="0.25", lw=0.9, marker="|", markersize=6,
+                             label="whisker: 25 %–75 % of the measurements"))
+    trials_text = (f"{trials[0]} trials a source" if len(trials) == 1 else
+                   f"{trials[0]}–{trials[-1]} trials a source")
+    top_legend(fig, legend, len(legend), "Uncertainty budget per error source (budget.csv): "
+               "each source alone, " + trials_text)
+    texts = save(plt, fig, path)
+
+    def ratio_words(measurand):
+        r = limits["ratio " + measurand]
+        return "not defined (full u = 0)" if r is None else f"{r[0]:.3f} to {r[1]:.3f}"
+    smallest = trials[0]
+    tolerance = 4.0 / math.sqrt(2.0 * (smallest - 1))     # read_budget: trials >= 2
+    caption = (
+        "For each error source, the median over the measurements of one probing mode ("
+        + ", ".join(f"{mode.replace('_', '-')}: {count[mode]}" for mode in modes)
+        + ") of its share u_i² / Σ_j u_j², where u_i is the standard uncertainty the source "
+        "gives alone — the others held at their estimates, on the very random numbers it has "
+        f"in the full run (common random numbers), {trials_text}; the whiskers span the "
+        "middle half (25 %–75 %) of the measurements' shares. Diameter: the LS diameter is "
+        "linear in the errors, so the u_i add in quadrature and the shares split u² — the "
+        f"quadrature sum √Σu_i² over the full run's u lies from {ratio_words('diameter')} "
+        f"over the measurements (Monte Carlo allows about ±{tolerance:.3f} at "
+        f"{smallest} trials). Roundness: RONt is not linear in the sources (a peak-to-valley "
+        "of the summed deviations is not a sum of peak-to-valleys, and each source alone "
+        "biases RONt upward), so the u_i need not add in quadrature — √Σu_i² / u lies from "
+        f"{ratio_words('roundness')} — and the shares only rank the sources; they do not "
+        "split u² into parts.")
+    figure = Figure(os.path.basename(path), "Uncertainty budget", caption, texts)
+    figure.series = {f"{measurand}: {mode}": count[mode] for measurand in MEASURANDS
+                     for mode in modes}
+    figure.limits = limits
+    figure.values = medians
+    return figure
+
+
 def make_figures(run, notes):
     """Chooses what to show and reads every file it needs first (so that bad input stops the
     run before anything is written), then draws the figures; returns [Figure]."""
@@ -1883,6 +2087,11 @@ def make_figures(run, notes):
         plans.append((figure_factors, (os.path.join(directory, "factors.png"),)))
     else:
         notes.append("factors.png not drawn: summary.csv has no factor other than 'all'.")
+    if run.budgets:
+        plans.append((figure_budget, (os.path.join(directory, "budget.png"),)))
+    else:
+        notes.append("budget.png not drawn: the run has no uncertainty budget (no budget.csv; "
+                     "`vcmm validate --budget` or `vcmm demo --budget` computes it).")
 
     plt, np = import_matplotlib()
     return [draw(plt, np, run, *arguments) for draw, arguments in plans]
@@ -2176,6 +2385,7 @@ def write_html(run, figures, notes, title):
     for name, what in (("results.csv", "per-measurement results (table below)"),
                        ("summary.csv", "E_n statistics by factor level"),
                        ("treatments.csv", "bias treatments against the truth"),
+                       ("budget.csv", "uncertainty budget per measurement and error source"),
                        ("results.json", "results for machines"),
                        ("summary.json", "summary for machines"),
                        ("run_info.json", "provenance")):

@@ -8,6 +8,7 @@
 #include "vcmm/errormodel/errors.h"
 #include "vcmm/geometry/point_io.h"
 #include "vcmm/geometry/text_lines.h"
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::characterization {
 namespace {
@@ -34,11 +35,7 @@ bool looks_like_measurement_csv(const std::string& text) {
 }  // namespace
 
 CmmPoints read_cmm_points_file(const std::string& path, bool require_z) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw errormodel::InvalidInput(path + ": cannot open the points file");
-  std::stringstream buffer;
-  buffer << f.rdbuf();
-  const std::string text = buffer.str();
+  const std::string text = geometry::read_text_file(path, "points file");
   CmmPoints out;
   if (looks_like_measurement_csv(text)) {
     std::istringstream in(text);

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "output_checks.h"
+#include "vcmm/geometry/text_file.h"
 #include "vcmm/characterization/hole_plate.h"
 #include "vcmm/errormodel/errors.h"
 #include "vcmm/errormodel/physical_ranges.h"
@@ -161,12 +162,6 @@ std::string comments_block(std::span<const std::string> comments, const char* ca
     s += "# " + comments[i] + "\n";
   }
   return s;
-}
-
-std::ifstream open_file(const std::string& path, const char* caller) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InvalidInput(std::string(caller) + ": cannot open '" + path + "'");
-  return f;
 }
 
 // ---- JSON helpers --------------------------------------------------------------------------
@@ -350,7 +345,7 @@ HolePlate read_hole_plate_csv(std::istream& in, const std::string& source) {
 }
 
 HolePlate read_hole_plate_csv_file(const std::string& path) {
-  std::ifstream f = open_file(path, "read_hole_plate_csv_file");
+  std::istringstream f(geometry::read_text_file(path, "hole-plate calibration file"));
   return read_hole_plate_csv(f, path);
 }
 
@@ -451,7 +446,7 @@ HolePlatePlacement read_hole_plate_placement_csv(std::istream& in, const std::st
 }
 
 HolePlatePlacement read_hole_plate_placement_csv_file(const std::string& path) {
-  std::ifstream f = open_file(path, "read_hole_plate_placement_csv_file");
+  std::istringstream f(geometry::read_text_file(path, "hole-plate placement file"));
   return read_hole_plate_placement_csv(f, path);
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "vcmm/errormodel/errors.h"
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::characterization {
 
@@ -18,11 +19,9 @@ void refuse_identical_inputs(std::span<const InputFile> files) {
   std::vector<std::optional<std::string>> content(files.size());
   std::vector<std::size_t> hash(files.size(), 0);
   for (std::size_t i = 0; i < files.size(); ++i) {
-    std::ifstream in(files[i].path, std::ios::binary);
-    if (!in) continue;
-    content[i].emplace(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad()) {
-      content[i].reset();
+    try {  // an unreadable file is left to its reader, which names the problem
+      content[i].emplace(geometry::read_text_file(files[i].path, "file"));
+    } catch (const geometry::InvalidInput&) {
       continue;
     }
     hash[i] = std::hash<std::string_view>{}(*content[i]);

@@ -18,6 +18,7 @@
 #include "internal/kinematics_json.h"
 #include "vcmm/errormodel/errors.h"
 #include "vcmm/errormodel/physical_ranges.h"
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::errormodel {
 namespace {
@@ -305,9 +306,9 @@ DigitalModel read_digital_model(std::istream& in, const std::string& source) {
 }
 
 DigitalModel read_digital_model_file(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InvalidParameter("", path + ": cannot open the digital-model file");
-  return read_digital_model(f, path);
+  if (const std::string why = geometry::unreadable_file_reason(path); !why.empty())
+    throw InvalidParameter("", path + ": cannot read the digital-model file: " + why);
+  return parse_digital_model(geometry::read_text_file(path, "digital-model file"), path);
 }
 
 DigitalModel with_kinematics_uncorrected(const DigitalModel& model) {

@@ -24,6 +24,7 @@
 #include "vcmm/errormodel/physical_ranges.h"
 #include "vcmm/geometry/number_field.h"
 #include "vcmm/geometry/text_lines.h"
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::errormodel {
 namespace {
@@ -354,8 +355,7 @@ Measurement read_measurement_csv(std::istream& in, const std::string& source) {
 }
 
 Measurement read_measurement_csv_file(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InvalidInput(path + ": cannot open the measurement file");
+  std::istringstream f(geometry::read_text_file(path, "measurement file"));
   return read_measurement_csv(f, path);
 }
 

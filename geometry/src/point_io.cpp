@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "internal/csv_fields.h"
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::geometry {
 namespace {
@@ -132,16 +133,7 @@ PointTable read_points_csv(std::istream& in, const std::string& source_name) {
 PointTable read_points_csv_file(const std::string& path) {
   if (path == "-") return read_points_csv(std::cin, "<stdin>");
   // One read of the whole file (C stdio: no stream construction or locale per call).
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InvalidInput(path + ": cannot open file for reading");
-  std::string text;
-  char buf[1 << 16];
-  std::size_t got = 0;
-  while ((got = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, got);
-  const int error = std::ferror(f) ? errno : 0;
-  std::fclose(f);
-  if (error != 0) throw InvalidInput(path + ": read error (" + std::strerror(error) + ")");
-  return parse_points_csv(text, path);
+  return parse_points_csv(read_text_file(path, "points file"), path);
 }
 
 }  // namespace vcmm::geometry

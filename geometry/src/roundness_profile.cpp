@@ -10,6 +10,7 @@
 // Messages use 17 significant digits for values (they read back to the same double) and 12
 // for angles converted from radians (so 11° computed from radians reads "11", not
 // "10.999999999999998").
+#include "vcmm/geometry/text_file.h"
 #include "vcmm/geometry/text_lines.h"
 #include "vcmm/geometry/roundness_profile.h"
 
@@ -188,8 +189,7 @@ RoundnessProfile read_roundness_profile_csv(std::istream& in, const std::string&
 }
 
 RoundnessProfile read_roundness_profile_csv_file(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InvalidInput(path + ": cannot open file for reading");
+  std::istringstream f(read_text_file(path, "roundness profile file"));
   return read_roundness_profile_csv(f, path);
 }
 

@@ -367,7 +367,7 @@ TEST(ProbeSphere, PointsFileInBothFormatsGivesMachineCoordinates) {
   EXPECT_EQ(read_cmm_points_file(xyz, false).points_mm(2, 1), 0.0);
   expect_invalid(
       [&] { (void)read_cmm_points_file((dir / "no_such_vcmm_file.csv").string(), true); },
-      "cannot open");
+      "no_such_vcmm_file.csv: cannot read the points file: no such file");
   std::filesystem::remove(csv);
   std::filesystem::remove(xyz);
 }

@@ -107,7 +107,8 @@ TEST(CliRoundness, BadInputsExitNonZeroWithAClearMessage) {
   }
   const CliRun missing = run("roundness /nonexistent/ring.csv");
   EXPECT_EQ(missing.exit_code, 3);
-  EXPECT_NE(missing.err.find("cannot open"), std::string::npos);
+  EXPECT_NE(missing.err.find("ring.csv: cannot read the points file: no such file"), std::string::npos)
+      << missing.err;
 }
 
 TEST(CliRoundness, ExtremeCoordinatesNeverCrash) {

@@ -257,6 +257,47 @@ TEST(CliExitCodes, UnwritableOutputsExit3WithPathAndReason) {
 
 // ---- 4: the result does not exist, in every subcommand alike -------------------------------------
 
+// A directory or a missing path where a file is expected: exit 3 naming the path, what the
+// file was meant to be and why. (A std::ifstream opens a directory on Linux: before, the
+// reader said "basic_filebuf::underflow error reading the file" without a path, or called the
+// directory "not valid JSON".) A directory of profiles without any *.csv: exit 3, not an empty
+// table with exit 0.
+TEST(CliExitCodes, DirectoriesAndMissingFilesAreNamedAsSuch) {
+  const fs::path dir = scratch_dir() / "a_directory";
+  fs::create_directories(dir / "sub");
+  const std::string d = quoted(dir);
+  struct Case {
+    std::string args, what;
+  };
+  const Case cases[] = {
+      {"uncertainty --model '" + kModel + "' --points " + d, "measurement file"},
+      {"uncertainty --model " + d + " --points " + quoted(measurement()), "digital-model file"},
+      {"validate " + d + " -o " + quoted(scratch_dir() / "dir_out"), "campaign file"},
+      {"demo --model " + d + " -o " + quoted(scratch_dir() / "dir_out2"), "digital-model file"},
+      {"simulate --model " + d + " --ring 171 --points 36 --location 600,500,250 -o " + quoted(scratch_dir() / "x.csv"),
+       "digital-model file"},
+      {"characterize sphere --points " + d + " --diameter-mm 25 --u-diameter-um 0.1 -o " +
+           quoted(scratch_dir() / "p.json"),
+       "points file"},
+  };
+  for (const Case& c : cases) {
+    const CliRun r = run(c.args);
+    EXPECT_EQ(r.exit_code, 3) << c.args << "\n" << r.err;
+    EXPECT_TRUE(has(r.err, dir.string() + ": cannot read the " + c.what +
+                               ": it is a directory, not a file"))
+        << c.args << "\n" << r.err;
+  }
+  const CliRun missing = run("roundness " + quoted(scratch_dir() / "no_such_profile.csv"));
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_TRUE(has(missing.err, "no_such_profile.csv: cannot read the points file: no such file"))
+      << missing.err;
+  const CliRun empty = run("roundness " + d);
+  EXPECT_EQ(empty.exit_code, 3) << empty.out;
+  EXPECT_TRUE(has(empty.err, dir.string() + ": the directory holds no profile (*.csv) files"))
+      << empty.err;
+  EXPECT_TRUE(empty.out.empty()) << empty.out;
+}
+
 TEST(CliExitCodes, MiOfAHalfRingExits4InRoundnessAndUncertainty) {
   const std::string half = half_ring_text();
   const fs::path file = write_scratch("half_ring.csv", half);

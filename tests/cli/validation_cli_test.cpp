@@ -4,6 +4,7 @@
 // its resume.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -307,6 +308,96 @@ TEST(CliDemo, KinematicsLeftUncorrectedAndFormScaled) {
   EXPECT_NE(truth.find("\"roundness_um\": 0.6"), std::string::npos) << truth.substr(0, 400);
   const std::string info = slurp(out / "run_info.json");
   EXPECT_NE(info.find("\"kinematic_errors\": \"uncertainty_only\""), std::string::npos);
+}
+
+/// A campaign of two entries of the 360-point measurement, 200 trials; `evaluation_extra` is
+/// added to the evaluation object (e.g. `, "budget": true`).
+fs::path small_campaign(const std::string& name, const std::string& evaluation_extra = "") {
+  const fs::path c = scratch_dir() / (name + ".json");
+  std::string entries;
+  for (const char* id : {"a", "b"}) {
+    entries += std::string(entries.empty() ? "" : ",") + R"({"id": ")" + id +
+               R"(", "points": ")" + measurement().string() +
+               R"(", "setup": {"location": "L", "orientation_deg": 0, "height": "middle",
+                 "mode": "scanning"},
+                 "reference": {"roundness": {"value_um": 0.2, "u_um": 0.01}}})";
+  }
+  std::ofstream(c) << R"({"schema": "vcmm.campaign", "schema_version": 1, "model": ")" << kModel
+                   << R"(", "evaluation": {"filter_cutoff_upr": 15, "trials": 200)"
+                   << evaluation_extra << R"(}, "measurements": [)" << entries << "]}";
+  return c;
+}
+
+TEST(CliValidate, UncertaintyBudgetPerMeasurementAndItsTable) {
+  const fs::path campaign = small_campaign("budget_campaign");
+  const fs::path out = scratch_dir() / "validate_budget";
+  fs::remove_all(out);
+  const std::string args =
+      "validate '" + campaign.string() + "' -o '" + out.string() + "' --progress never";
+  const CliRun plain = run(args);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_FALSE(fs::exists(out / "budget.csv"));  // off by default
+  const CliRun a = run(args + " --budget --budget-trials 100");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_NE(a.out.find("(2 computed, 0 resumed)"), std::string::npos) << a.out;
+  const std::string table = slurp(out / "budget.csv");
+  EXPECT_EQ(table.rfind("id,location,orientation_deg,height,mode,trials,source,evaluated,"
+                        "u_diameter_um,share_diameter,u_roundness_um,share_roundness,"
+                        "ratio_diameter,ratio_roundness\n", 0),
+            0u)
+      << table.substr(0, 200);
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 1 + 2 * 7);
+  EXPECT_NE(table.find("a,L,0,middle,scanning,100,probe,true,"), std::string::npos) << table;
+  const auto j = nlohmann::json::parse(slurp(out / "measurements" / "b.json"));
+  EXPECT_EQ(j["budget"]["trials"], 100);
+  EXPECT_EQ(j["budget"]["sources"].size(), 5u);
+  const auto info = nlohmann::json::parse(slurp(out / "run_info.json"));
+  EXPECT_NE(info["command"].get<std::string>().find("--budget --budget-trials 100"),
+            std::string::npos);
+  // The same options resume; without --budget-trials each budget run has all 200 trials.
+  const CliRun b = run(args + " --budget --budget-trials 100");
+  EXPECT_NE(b.out.find("(0 computed, 2 resumed)"), std::string::npos) << b.out;
+  const CliRun c = run(args + " --budget");
+  EXPECT_NE(c.out.find("(2 computed, 0 resumed)"), std::string::npos) << c.out;
+  EXPECT_EQ(nlohmann::json::parse(slurp(out / "measurements" / "b.json"))["budget"]["trials"],
+            200);
+
+  // The campaign file can ask for it; --budget-trials then overrides its budget_trials.
+  const fs::path in_file =
+      small_campaign("budget_in_file", R"(, "budget": true, "budget_trials": 150)");
+  const fs::path out2 = scratch_dir() / "validate_budget_file";
+  fs::remove_all(out2);
+  const CliRun d = run("validate '" + in_file.string() + "' -o '" + out2.string() +
+                       "' --progress never");
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_NE(slurp(out2 / "budget.csv").find(",150,noise,"), std::string::npos);
+
+  // Bad values: usage errors (exit 2) naming the option, before any computation.
+  for (const char* bad : {" --budget --budget-trials 300", " --budget --budget-trials 50",
+                          " --budget-trials 100", " --budget --budget-trials x"}) {
+    const CliRun e = run(args + bad);
+    EXPECT_EQ(e.exit_code, 2) << bad << "\n" << e.err;
+    EXPECT_NE(e.err.find("--budget"), std::string::npos) << bad << "\n" << e.err;
+  }
+  const CliRun too_many = run(args + " --budget --budget-trials 300");
+  EXPECT_NE(too_many.err.find("exceeds the 200 trials per measurement (evaluation.trials of"),
+            std::string::npos)
+      << too_many.err;
+  // In the campaign file: input errors (exit 3) naming the key.
+  const CliRun f = run("validate '" +
+                       small_campaign("budget_bad", R"(, "budget_trials": 150)").string() +
+                       "' -o '" + (scratch_dir() / "v_bad").string() + "' --progress never");
+  EXPECT_EQ(f.exit_code, 3);
+  EXPECT_NE(f.err.find("evaluation.budget_trials: needs \"budget\": true"), std::string::npos)
+      << f.err;
+  // The demo checks --budget-trials against --trials before it builds its world.
+  const CliRun g = run("demo -o '" + (scratch_dir() / "demo_budget_bad").string() +
+                       "' --trials 100 --budget --budget-trials 200 --progress never");
+  EXPECT_EQ(g.exit_code, 2) << g.err;
+  EXPECT_NE(g.err.find("--budget-trials 200 exceeds the 100 trials per measurement (--trials)"),
+            std::string::npos)
+      << g.err;
+  EXPECT_FALSE(fs::exists(scratch_dir() / "demo_budget_bad" / "world"));
 }
 
 TEST(CliValidate, CampaignErrorsNameTheEntry) {

@@ -104,7 +104,7 @@ TEST(ReadPointsCsv, MissingFileIsAClearError) {
     vcmm::geometry::read_points_csv_file("/nonexistent/ring.csv");
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& e) {
-    EXPECT_STREQ(e.what(), "/nonexistent/ring.csv: cannot open file for reading");
+    EXPECT_STREQ(e.what(), "/nonexistent/ring.csv: cannot read the points file: no such file");
   }
 }
 

@@ -161,7 +161,7 @@ TEST(RoundnessProfileCsv, EveryRuleBrokenGivesFileLineAndField) {
             "p.csv:1: profile is not closed: an angular gap of 180 deg from 0 deg to 180 deg (a "
             "closed profile has no gap of 180 deg or more)");
   EXPECT_EQ(message_of([] { read_roundness_profile_csv_file("/nonexistent/ref.csv"); }),
-            "/nonexistent/ref.csv: cannot open file for reading");
+            "/nonexistent/ref.csv: cannot read the roundness profile file: no such file");
 }
 
 TEST(RoundnessProfileCsv, ReadsAFileAndNamesItInMessages) {

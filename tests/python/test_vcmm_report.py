@@ -14,6 +14,7 @@ import csv
 import html
 import html.parser
 import importlib.util
+import json
 import os
 import re
 import shutil
@@ -178,6 +179,15 @@ class DemoDirectory(unittest.TestCase):
                 check_vector_files(self, path[:-len(".png")])
                 # A drawn figure with text and data is tens of kB; a blank one is a few kB.
                 self.assertGreater(os.path.getsize(os.path.join(self.figures, name)), 20000)
+
+    def test_without_budget_one_note_and_no_figure(self):
+        notes = [line for line in self.proc.stderr.splitlines() if "budget" in line]
+        self.assertEqual(notes, ["vcmm_report.py: note: budget.png not drawn: the run has no "
+                                 "uncertainty budget (no budget.csv; `vcmm validate --budget` "
+                                 "or `vcmm demo --budget` computes it)."])
+        self.assertFalse(any(n.startswith("budget.") for n in os.listdir(self.figures)))
+        self.assertIn("budget.png not drawn", self.html)
+        self.assertIn("<li>budget.csv — not present</li>", self.html)
 
     def test_histograms_are_one_scanning_and_one_touch_at_the_centre(self):
         names = [n for n in os.listdir(self.figures)
@@ -630,6 +640,155 @@ class AxesFollowTheData(unittest.TestCase):
             places = {len(x) for x in re.findall(r"[-+]?\d+\.(\d+) µm", title)}
             self.assertEqual(len(places), 1, title)
             self.assertIn("$E_n$", title)
+
+
+def read_budget_rows(outdir):
+    with open(os.path.join(outdir, "budget.csv"), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+@unittest.skipUnless(HAVE_PLOTTING, SKIP_MESSAGE)
+class BudgetFigure(unittest.TestCase):
+    """`vcmm validate --budget` / `vcmm demo --budget`: budget.csv gives the figure budget
+    (median share per error source, per measurand and mode) with its caption, listed in the
+    report.  Drawn in-process (only this figure, in all three formats: the whole script runs
+    end to end in CliBudgetReport and DemoDirectory); a run without budget: DemoDirectory."""
+
+    @classmethod
+    def setUpClass(cls):
+        import vcmm_report
+        cls.tmp = tempfile.mkdtemp(prefix="vcmm_report_budget_")
+        cls.outdir = os.path.join(cls.tmp, "run")
+        cls.ids = make_report_fixture.write_fixture(
+            cls.outdir, seed=31, trials=20, locations=("C",), orientations_deg=(0,),
+            heights=("top", "middle", "bottom"), budget=True)
+        run = vcmm_report.load_run(cls.outdir)
+        plt, np = vcmm_report.import_matplotlib()
+        formats = vcmm_report.FIGURE_FORMATS
+        vcmm_report.FIGURE_FORMATS = ("png", "svg", "pdf")  # draw() may have cut them
+        try:
+            cls.figure = vcmm_report.figure_budget(
+                plt, np, run, os.path.join(cls.outdir, "figures", "budget.png"))
+        finally:
+            vcmm_report.FIGURE_FORMATS = formats
+        vcmm_report.write_html(run, [cls.figure], [], "budget")
+        with open(os.path.join(cls.outdir, "report.html"), encoding="utf-8") as f:
+            cls.html = f.read()
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def test_figure_files_in_every_format(self):
+        png = os.path.join(self.outdir, "figures", "budget.png")
+        width, height = png_size(png)
+        self.assertGreater(width, 1000)
+        self.assertAlmostEqual(png_dpi(png), 200.0, delta=0.5)
+        check_vector_files(self, os.path.join(self.outdir, "figures", "budget"))
+
+    def test_report_lists_the_table_and_the_figure_with_its_caption(self):
+        self.assertIn('<a href="budget.csv">budget.csv</a>', self.html)
+        self.assertIn('<figure id="budget.png"><h3>Uncertainty budget</h3>', self.html)
+        self.assertIn("the u_i add in quadrature and the shares split u²", self.html)
+        self.assertIn("the shares only rank the sources", self.html)
+        # The ratio range stated is the one in budget.csv.
+        rows = [r for r in read_budget_rows(self.outdir) if r["source"] == "quadrature_sum"]
+        for measurand in ("diameter", "roundness"):
+            ratios = [float(r["ratio_" + measurand]) for r in rows]
+            self.assertIn(f"{min(ratios):.3f} to {max(ratios):.3f}", self.html)
+
+    def test_medians_per_measurand_mode_and_source(self):
+        figure = self.figure
+        rows = read_budget_rows(self.outdir)
+        sources = list(dict.fromkeys(r["source"] for r in rows
+                                     if r["source"] not in ("quadrature_sum", "full_run")))
+        self.assertEqual(sources, ["roughness", "temperature", "kinematic", "probe", "noise"])
+        self.assertEqual(figure.series, {"diameter: scanning": 3, "diameter: touch_trigger": 3,
+                                         "roundness: scanning": 3,
+                                         "roundness: touch_trigger": 3})
+        for measurand in ("diameter", "roundness"):
+            for mode in ("scanning", "touch_trigger"):
+                for source in sources:
+                    shares = sorted(100.0 * float(r["share_" + measurand]) for r in rows
+                                    if r["mode"] == mode and r["source"] == source)
+                    median = shares[1]                           # 3 measurements
+                    self.assertAlmostEqual(figure.values[(measurand, mode, source)], median,
+                                           places=9)
+        # The probe dominates the roundness of the scans in the fixture (as in the demo).
+        self.assertGreater(figure.values[("roundness", "scanning", "probe")], 80.0)
+        self.assertIn("scanning (n = 3)", figure.texts)
+        self.assertIn("touch-trigger (n = 3)", figure.texts)
+
+    def test_bad_budget_tables_are_named(self):
+        for name, edit, words in (
+                ("unknown_id", lambda r: r.update(id="X-1") if r["source"] == "noise" else None,
+                 "measurement 'X-1' is not in results.csv"),
+                ("share", lambda r: r.update(share_roundness="1.5")
+                 if r["source"] == "probe" else None,
+                 "column 'share_roundness' must be a fraction in [0, 1]; '1.5'"),
+                ("mode", lambda r: r.update(mode="touch_trigger")
+                 if r["mode"] == "scanning" and r["source"] == "probe" else None,
+                 "has mode 'touch_trigger' but 'scanning' in results.csv"),
+                ("trials", lambda r: r.update(trials="1"),
+                 "column 'trials' must be >= 2")):
+            outdir = os.path.join(self.tmp, "bad_" + name)
+            shutil.copytree(self.outdir, outdir)
+            rows = read_budget_rows(outdir)
+            for r in rows[:7]:
+                edit(r)
+            with open(os.path.join(outdir, "budget.csv"), "w", newline="") as f:
+                writer = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator="\n")
+                writer.writeheader()
+                writer.writerows(rows)
+            import vcmm_report                  # the reader, in-process: nothing is drawn
+            with self.assertRaises(vcmm_report.InputError) as caught:
+                vcmm_report.load_run(outdir)
+            self.assertIn(os.path.join(outdir, "budget.csv") + ": line ", str(caught.exception))
+            self.assertIn(words, str(caught.exception), name)
+
+
+@unittest.skipUnless(HAVE_PLOTTING and VCMM_CLI, "VCMM_CLI not set (ctest sets it) or "
+                     + SKIP_MESSAGE)
+class CliBudgetReport(unittest.TestCase):
+    """End to end: a tiny `vcmm validate --budget` run (one simulated 360-point scan, two
+    entries, 200 trials: about a second) drawn by `vcmm report`."""
+
+    def test_validate_with_budget_then_report(self):
+        tmp = tempfile.mkdtemp(prefix="vcmm_report_cli_budget_")
+        try:
+            model = os.path.join(PYTHON_DIR, "..", "examples", "cmm_model.json")
+            points = os.path.join(tmp, "ring.csv")
+            proc = subprocess.run(
+                [VCMM_CLI, "simulate", "--model", model, "--ring", "171", "--points", "360",
+                 "--location", "600,500,250", "--stylus-offset", "0,0,-100",
+                 "--temperature", "20.4", "--seed", "3", "-o", points],
+                capture_output=True, text=True, timeout=120)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            entries = [{"id": mid, "points": points,
+                        "setup": {"location": "C", "orientation_deg": 0, "height": height,
+                                  "mode": "scanning"},
+                        "reference": {"roundness": {"value_um": 0.2, "u_um": 0.01}}}
+                       for mid, height in (("a", "top"), ("b", "bottom"))]
+            campaign = os.path.join(tmp, "campaign.json")
+            with open(campaign, "w") as f:
+                json.dump({"schema": "vcmm.campaign", "schema_version": 1,
+                           "model": os.path.abspath(model),
+                           "evaluation": {"filter_cutoff_upr": 15, "trials": 200},
+                           "measurements": entries}, f)
+            outdir = os.path.join(tmp, "run")
+            proc = subprocess.run([VCMM_CLI, "validate", campaign, "-o", outdir, "--budget",
+                                   "--budget-trials", "100", "--progress", "never"],
+                                  capture_output=True, text=True, timeout=120)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            proc = subprocess.run([VCMM_CLI, "report", outdir], capture_output=True,
+                                  text=True, timeout=300)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            for kind in ("png", "svg", "pdf"):
+                self.assertTrue(os.path.isfile(os.path.join(outdir, "figures",
+                                                            "budget." + kind)), kind)
+            self.assertNotIn("budget.png not drawn", proc.stderr)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
 
 
 @unittest.skipUnless(HAVE_PLOTTING and VCMM_CLI, "VCMM_CLI not set (ctest sets it) or "

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -246,6 +247,139 @@ TEST_F(CampaignRun, APlainCmmExportWithItsSetupGivesTheSameEstimates) {
   // The setup keys survive the campaign file's round trip.
   EXPECT_EQ(parse_campaign(campaign_json(c), root_ / "world" / "c.json").measurements[1].setup,
             c.measurements[1].setup);
+}
+
+/// The first two scanning and the first two touch-trigger measurements of the campaign.
+Campaign two_of_each_mode(const Campaign& c) {
+  Campaign out = c;
+  out.measurements.clear();
+  for (const em::ProbingMode mode : {em::ProbingMode::scanning, em::ProbingMode::touch_trigger}) {
+    std::size_t taken = 0;
+    for (const auto& m : c.measurements)
+      if (m.setup.mode == mode && taken < 2) {
+        out.measurements.push_back(m);
+        ++taken;
+      }
+  }
+  return out;
+}
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> fields;
+    std::size_t start = 0;
+    for (std::size_t comma; (comma = line.find(',', start)) != std::string::npos;
+         start = comma + 1)
+      fields.push_back(line.substr(start, comma - start));
+    fields.push_back(line.substr(start));
+    rows.push_back(std::move(fields));
+  }
+  return rows;
+}
+
+TEST_F(CampaignRun, TheUncertaintyBudgetIsOffByDefaultAndPerMeasurementWhenAsked) {
+  Campaign c = two_of_each_mode(campaign_);
+  ASSERT_EQ(c.measurements.size(), 4u);
+  c.evaluation.trials = 200;
+  // The budget's runs share the exact trial's random numbers, so with a budget the first run is
+  // always exact (trial_kind.h); pinned here so that the numbers compared below are the same
+  // trial's with and without the budget.
+  c.evaluation.trial = TrialKind::exact;
+  const fs::path out = root_ / "out";
+  const CampaignOutcome plain = run_campaign(c, out, {});
+  for (const auto& m : plain.measurements) EXPECT_FALSE(m.budget.has_value()) << m.id;
+  EXPECT_FALSE(fs::exists(out / "budget.csv"));
+  EXPECT_EQ(nlohmann::json::parse(slurp(out / "run_info.json"))["budget"], false);
+  EXPECT_FALSE(nlohmann::json::parse(slurp(out / "measurements" / (c.measurements[0].id + ".json")))
+                   .contains("budget"));
+
+  // Asked for: the budget settings are part of the fingerprint, so nothing is resumed.
+  c.evaluation.budget = true;
+  c.evaluation.budget_trials = 100;
+  const CampaignOutcome with = run_campaign(c, out, {});
+  EXPECT_EQ(with.resumed, 0u);
+  EXPECT_EQ(with.computed, 4u);
+  const auto rows = csv_rows(slurp(out / "budget.csv"));
+  ASSERT_EQ(rows.size(), 1u + 4u * 7u);  // header; per measurement 5 sources + 2 summary rows
+  const std::vector<std::string> header = {
+      "id", "location", "orientation_deg", "height", "mode", "trials", "source", "evaluated",
+      "u_diameter_um", "share_diameter", "u_roundness_um", "share_roundness", "ratio_diameter",
+      "ratio_roundness"};
+  EXPECT_EQ(rows[0], header);
+  const std::vector<std::string> sources = {"roughness", "temperature", "kinematic", "probe",
+                                            "noise", "quadrature_sum", "full_run"};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const MeasurementOutcome& m = with.measurements[i];
+    ASSERT_TRUE(m.budget.has_value()) << m.id;
+    const UncertaintyBudget& b = *m.budget;
+    EXPECT_EQ(b.trials, 100u);
+    ASSERT_EQ(b.sources.size(), 5u);
+    // The budget changes none of the measurement's other numbers.
+    EXPECT_EQ(m.diameter.u_mm, plain.measurements[i].diameter.u_mm);
+    EXPECT_EQ(m.roundness.corrected_mm, plain.measurements[i].roundness.corrected_mm);
+    // The measurement's file carries the budget in the shape of `vcmm uncertainty --budget`.
+    const auto j = nlohmann::json::parse(slurp(out / "measurements" / (m.id + ".json")));
+    ASSERT_TRUE(j.contains("budget")) << m.id;
+    for (const char* key : {"method", "trials", "wall_seconds", "sources", "quadrature_sum",
+                            "note"})
+      EXPECT_TRUE(j["budget"].contains(key)) << key;
+    EXPECT_EQ(j["budget"]["sources"][3]["source"], "probe");
+    EXPECT_DOUBLE_EQ(j["budget"]["sources"][3]["roundness_u_um"].get<double>(),
+                     b.sources[3].roundness_u_mm * 1000.0);
+    // Its rows in budget.csv: µm, shares that add up to 1, the ratio on the sum's row.
+    double share_d = 0.0, share_r = 0.0;
+    for (std::size_t k = 0; k < 7; ++k) {
+      const auto& r = rows[1 + 7 * i + k];
+      ASSERT_EQ(r.size(), header.size());
+      EXPECT_EQ(r[0], m.id);
+      EXPECT_EQ(r[4], std::string(em::to_string(m.mode)));
+      EXPECT_EQ(r[5], "100");
+      EXPECT_EQ(r[6], sources[k]);
+      if (k < 5) {
+        const SourceContribution& s = b.sources[k];
+        EXPECT_EQ(r[7], s.evaluated ? "true" : "false");
+        EXPECT_DOUBLE_EQ(std::stod(r[8]), s.diameter_u_mm * 1000.0) << sources[k];
+        EXPECT_DOUBLE_EQ(std::stod(r[10]), s.roundness_u_mm * 1000.0) << sources[k];
+        share_d += std::stod(r[9]);
+        share_r += std::stod(r[11]);
+        EXPECT_EQ(r[12], "");
+      } else if (k == 5) {
+        EXPECT_DOUBLE_EQ(std::stod(r[8]), b.diameter_quadrature_mm * 1000.0);
+        EXPECT_DOUBLE_EQ(std::stod(r[12]), b.diameter_quadrature_mm / b.diameter_full_u_mm);
+        EXPECT_DOUBLE_EQ(std::stod(r[13]), b.roundness_quadrature_mm / b.roundness_full_u_mm);
+        EXPECT_EQ(r[9], "");
+      } else {
+        EXPECT_DOUBLE_EQ(std::stod(r[10]), b.roundness_full_u_mm * 1000.0);
+        EXPECT_EQ(r[13], "");
+      }
+    }
+    EXPECT_NEAR(share_d, 1.0, 1e-12) << m.id;
+    EXPECT_NEAR(share_r, 1.0, 1e-12) << m.id;
+    // The LS diameter is linear in the errors: its u_i add in quadrature (ratio 1 within
+    // 4/√(2(M−1)) = 0.28 at M = 100).
+    EXPECT_NEAR(b.diameter_quadrature_mm / b.diameter_full_u_mm, 1.0, 0.28) << m.id;
+  }
+  const auto info = nlohmann::json::parse(slurp(out / "run_info.json"));
+  EXPECT_EQ(info["budget"], true);
+  EXPECT_EQ(info["budget_trials"], 100);
+
+  // Same settings: every measurement resumed, the same table byte for byte.
+  const std::string table = slurp(out / "budget.csv");
+  const CampaignOutcome again = run_campaign(c, out, {});
+  EXPECT_EQ(again.resumed, 4u);
+  EXPECT_EQ(slurp(out / "budget.csv"), table);
+  // Other budget trials: recomputed, not resumed.
+  c.evaluation.budget_trials = 0;  // as many as the run: 200
+  const CampaignOutcome longer = run_campaign(c, out, {});
+  EXPECT_EQ(longer.resumed, 0u);
+  EXPECT_EQ(longer.measurements[0].budget->trials, 200u);
+  // Off again: recomputed, and the earlier budget table is gone.
+  c.evaluation.budget = false;
+  const CampaignOutcome off = run_campaign(c, out, {});
+  EXPECT_EQ(off.resumed, 0u);
+  EXPECT_FALSE(fs::exists(out / "budget.csv"));
 }
 
 TEST(CampaignSummary, StatisticsByHand) {

@@ -287,7 +287,7 @@ TEST_F(CampaignTest, MissingFilesNameTheEntryAndTheResolvedPath) {
     ADD_FAILURE() << "no exception";
   } catch (const CampaignError& e) {
     EXPECT_EQ(std::string(e.what()), (dir_ / "nothing.json").string() +
-                                         ": cannot open the campaign file");
+                                         ": cannot read the campaign file: no such file");
   }
 }
 
@@ -315,7 +315,7 @@ TEST_F(CampaignTest, UnknownKeysAreErrorsAnywhere) {
   EXPECT_EQ(rule_of(doc),
             "evaluation: unknown key \"trails\" (allowed here: reference_circle, "
             "filter_cutoff_upr, trials, seed, coverage_probability, k, bias_treatment, "
-            "kinematic_errors, trial)");
+            "kinematic_errors, budget, budget_trials, trial)");
   doc = example();
   doc["measurements"][1]["setup"]["colour"] = "red";
   EXPECT_EQ(rule_of(doc),
@@ -580,6 +580,46 @@ TEST_F(CampaignTest, NumbersMustBeFiniteAndInRange) {
                           "must be > 0; got 0");
 }
 
+TEST_F(CampaignTest, BudgetSettingsAreReadCheckedAndWritten) {
+  json doc = example();
+  EXPECT_FALSE(parse(doc).evaluation.budget);  // off by default
+  doc["evaluation"]["trials"] = 2000;
+  doc["evaluation"]["budget"] = true;
+  EvaluationSettings e = parse(doc).evaluation;
+  EXPECT_TRUE(e.budget);
+  EXPECT_EQ(e.budget_trials, 0u);  // as many as the measurement's run
+  doc["evaluation"]["budget_trials"] = 500;
+  const Campaign c = parse(doc);
+  EXPECT_EQ(c.evaluation.budget_trials, 500u);
+  // Written explicitly and read back to the same settings.
+  const std::string text = campaign_json(c);
+  EXPECT_NE(text.find("\"budget\": true"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"budget_trials\": 500"), std::string::npos) << text;
+  EXPECT_EQ(parse_text(text), c);
+  doc["evaluation"]["budget_trials"] = 2000;  // the upper end: the measurement's trials
+  EXPECT_EQ(parse(doc).evaluation.budget_trials, 2000u);
+  Campaign off = parse(example());
+  EXPECT_NE(campaign_json(off).find("\"budget\": false"), std::string::npos);
+  EXPECT_EQ(campaign_json(off).find("budget_trials"), std::string::npos);
+
+  for (const auto& [trials, shown] : {std::pair<json, std::string>{99, "99"}, {2001, "2001"},
+                                      {-100, "-100"}, {500.5, "500.5"}, {"500", "\"500\""}}) {
+    doc["evaluation"]["budget_trials"] = trials;
+    EXPECT_EQ(rule_of(doc), "evaluation.budget_trials: must be an integer from 100 to 2000 "
+                            "(evaluation.trials); got " + shown);
+  }
+  doc["evaluation"]["budget"] = false;
+  doc["evaluation"]["budget_trials"] = 500;
+  EXPECT_EQ(rule_of(doc), "evaluation.budget_trials: needs \"budget\": true (the trials of "
+                          "each uncertainty-budget run)");
+  doc["evaluation"].erase("budget");
+  EXPECT_EQ(rule_of(doc), "evaluation.budget_trials: needs \"budget\": true (the trials of "
+                          "each uncertainty-budget run)");
+  doc["evaluation"].erase("budget_trials");
+  doc["evaluation"]["budget"] = "yes";
+  EXPECT_EQ(rule_of(doc), "evaluation.budget: must be true or false; got \"yes\"");
+}
+
 TEST_F(CampaignTest, SyntaxErrorsAndRepeatedKeysGiveLineAndPath) {
   const Failure f = failure_of_text("{\n  \"schema\": \"vcmm.campaign\",\n  \"model\": ,\n}\n");
   EXPECT_NE(f.message.find((dir_ / "campaign.json").string() + ":3: model: invalid JSON: "),
@@ -679,7 +719,7 @@ TEST_F(CampaignTest, ReferenceEvaluationErrorsNameTheEntry) {
     ADD_FAILURE() << "no exception";
   } catch (const CampaignError& e) {
     EXPECT_EQ(e.json_path(), "measurements[1].reference.diameter.profile");
-    EXPECT_NE(std::string(e.what()).find("cannot open file for reading"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("cannot read the roundness profile file: no such file"), std::string::npos);
   }
   EXPECT_THROW(evaluate_diameter_reference(c, 2), vcmm::geometry::InvalidInput);
   EXPECT_THROW(evaluate_roundness_reference(c, 0, 0.0), vcmm::geometry::InvalidInput);

@@ -17,6 +17,7 @@
 
 #include "vcmm/errormodel/json_input.h"
 #include "vcmm/errormodel/physical_ranges.h"
+#include "vcmm/geometry/text_file.h"
 
 #include <cmath>
 #include <fstream>
@@ -266,7 +267,8 @@ class Reader {
     only_keys(v,
               {{"reference_circle", ""}, {"filter_cutoff_upr", "the filter cut-off"},
                {"trials", ""}, {"seed", ""}, {"coverage_probability", ""}, {"k", ""},
-               {"bias_treatment", ""}, {"kinematic_errors", ""}, {"trial", ""}},
+               {"bias_treatment", ""}, {"kinematic_errors", ""}, {"budget", ""},
+               {"budget_trials", ""}, {"trial", ""}},
               path);
     EvaluationSettings e;
     if (const json* rc = find(v, "reference_circle")) {
@@ -286,30 +288,11 @@ class Reader {
       }
     }
     if (const json* t = find(v, "trials")) {
-      const std::string p = join(path, "trials");
-      const std::string rule = "must be an integer from " + std::to_string(min_campaign_trials) +
-                               " to " + std::to_string(max_campaign_trials);
-      if (!t->is_number_integer()) fail(p, rule, *t);
-      if (t->is_number_unsigned()) {
-        e.trials = t->get<std::uint64_t>();
-      } else {
-        const long long signed_value = t->get<long long>();
-        if (signed_value < 0) fail(p, rule, *t);
-        e.trials = static_cast<std::uint64_t>(signed_value);
-      }
-      if (e.trials < min_campaign_trials || e.trials > max_campaign_trials) fail(p, rule, *t);
+      e.trials = count(*t, join(path, "trials"), min_campaign_trials, max_campaign_trials);
     }
     if (const json* s = find(v, "seed")) {
-      const std::string p = join(path, "seed");
-      const std::string rule = "must be an unsigned 64-bit integer (0 to 18446744073709551615)";
-      if (!s->is_number_integer()) fail(p, rule, *s);
-      if (s->is_number_unsigned()) {
-        e.seed = s->get<std::uint64_t>();
-      } else {
-        const long long signed_value = s->get<long long>();
-        if (signed_value < 0) fail(p, rule, *s);
-        e.seed = static_cast<std::uint64_t>(signed_value);
-      }
+      e.seed = unsigned_integer(*s, join(path, "seed"),
+                                "must be an unsigned 64-bit integer (0 to 18446744073709551615)");
     }
     if (const json* cp = find(v, "coverage_probability")) {
       const std::string p = join(path, "coverage_probability");
@@ -331,6 +314,18 @@ class Reader {
              *ke);
       e.kinematics_corrected = text == "corrected";
     }
+    if (const json* b = find(v, "budget")) {
+      if (!b->is_boolean()) fail(join(path, "budget"), "must be true or false", *b);
+      e.budget = b->get<bool>();
+    }
+    if (const json* bt = find(v, "budget_trials")) {
+      const std::string p = join(path, "budget_trials");
+      if (!e.budget)
+        fail(p, "needs \"budget\": true (the trials of each uncertainty-budget run)");
+      // At most the measurement's trials: each budget run is compared with the full run's u
+      // over the same trials, where the random numbers coincide (ring_uncertainty_budget.h).
+      e.budget_trials = count(*bt, p, min_campaign_trials, e.trials, " (evaluation.trials)");
+    }
     if (const json* t = find(v, "trial")) {
       const auto kind = t->is_string() ? trial_kind_from_string(t->get<std::string>())
                                        : std::nullopt;
@@ -338,6 +333,26 @@ class Reader {
       e.trial = *kind;
     }
     return e;
+  }
+
+  /// An integer in [0, 2⁶⁴ − 1] (JSON keeps non-negative integers unsigned, negative ones
+  /// signed); anything else fails with `rule`.
+  std::uint64_t unsigned_integer(const json& v, const std::string& path,
+                                 const std::string& rule) const {
+    if (!v.is_number_integer()) fail(path, rule, v);
+    if (v.is_number_unsigned()) return v.get<std::uint64_t>();
+    if (v.get<long long>() < 0) fail(path, rule, v);
+    return static_cast<std::uint64_t>(v.get<long long>());
+  }
+
+  /// A trial count: an integer in [min, max] (`max_source` says where max comes from).
+  std::uint64_t count(const json& v, const std::string& path, std::uint64_t min,
+                      std::uint64_t max, const std::string& max_source = "") const {
+    const std::string rule = "must be an integer from " + std::to_string(min) + " to " +
+                             std::to_string(max) + max_source;
+    const std::uint64_t n = unsigned_integer(v, path, rule);
+    if (n < min || n > max) fail(path, rule, v);
+    return n;
   }
 
   CampaignMeasurement measurement(const json& v, std::size_t i,
@@ -632,12 +647,9 @@ Campaign parse_campaign(std::string_view json_text, const fs::path& campaign_pat
 }
 
 Campaign read_campaign_file(const fs::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw_error(path.string(), std::nullopt, {}, "", "cannot open the campaign file");
-  std::ostringstream text;
-  text << f.rdbuf();
-  if (f.bad()) throw_error(path.string(), std::nullopt, {}, "", "read error");
-  return parse_campaign(text.str(), path);
+  if (const std::string why = geometry::unreadable_file_reason(path.string()); !why.empty())
+    throw_error(path.string(), std::nullopt, {}, "", "cannot read the campaign file: " + why);
+  return parse_campaign(geometry::read_text_file(path.string(), "campaign file"), path);
 }
 
 std::string campaign_json(const Campaign& c) {
@@ -657,6 +669,8 @@ std::string campaign_json(const Campaign& c) {
   e["k"] = c.evaluation.k;
   e["bias_treatment"] = std::string(to_string(c.evaluation.bias_treatment));
   e["kinematic_errors"] = c.evaluation.kinematics_corrected ? "corrected" : "uncertainty_only";
+  e["budget"] = c.evaluation.budget;
+  if (c.evaluation.budget_trials != 0) e["budget_trials"] = c.evaluation.budget_trials;
   e["trial"] = std::string(to_string(c.evaluation.trial));
   ordered_json list = ordered_json::array();
   for (const CampaignMeasurement& m : c.measurements) {

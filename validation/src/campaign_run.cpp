@@ -16,6 +16,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "internal/budget_json.h"
 #include "internal/number_text.h"
 #include "vcmm/errormodel/atomic_file.h"
 #include "vcmm/errormodel/digital_model.h"
@@ -23,6 +24,7 @@
 #include "vcmm/validation/comparison.h"
 #include "vcmm/validation/provenance.h"
 #include "vcmm/validation/ring_uncertainty_report.h"
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::validation {
 namespace {
@@ -41,15 +43,11 @@ constexpr double kSetupToleranceMm = 1e-9;
 constexpr double kSetupToleranceDeg = 1e-9;
 constexpr double kSetupToleranceC = 1e-9;
 /// Version of the per-measurement file; part of the fingerprint (a format change recomputes).
-constexpr const char* kOutcomeFormat = "vcmm.campaign_measurement.v2";
+/// v3: the optional "budget" object.
+constexpr const char* kOutcomeFormat = "vcmm.campaign_measurement.v3";
 
 std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in)
-    throw geometry::InvalidInput(p.string() + ": cannot read the file: " + std::strerror(errno));
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
+  return geometry::read_text_file(p.string(), "file");
 }
 
 /// FNV-1a 64 over a sequence of byte strings (with their lengths, so boundaries count).
@@ -297,20 +295,22 @@ MeasurandOutcome measurand_from_json(const json& j) {
 }
 
 json outcome_to_json(const MeasurementOutcome& o) {
-  return {{"format", kOutcomeFormat},
-          {"fingerprint", o.fingerprint},
-          {"id", o.id},
-          {"location", o.location},
-          {"orientation_deg", o.orientation_deg},
-          {"height", std::string(to_string(o.height))},
-          {"mode", std::string(em::to_string(o.mode))},
-          {"points", o.points},
-          {"seed", o.seed},
-          {"trials", o.trials},
-          {"trial", o.trial},
-          {"wall_seconds", o.wall_seconds},
-          {"diameter", measurand_to_json(o.diameter)},
-          {"roundness", measurand_to_json(o.roundness)}};
+  json j = {{"format", kOutcomeFormat},
+            {"fingerprint", o.fingerprint},
+            {"id", o.id},
+            {"location", o.location},
+            {"orientation_deg", o.orientation_deg},
+            {"height", std::string(to_string(o.height))},
+            {"mode", std::string(em::to_string(o.mode))},
+            {"points", o.points},
+            {"seed", o.seed},
+            {"trials", o.trials},
+            {"trial", o.trial},
+            {"wall_seconds", o.wall_seconds},
+            {"diameter", measurand_to_json(o.diameter)},
+            {"roundness", measurand_to_json(o.roundness)}};
+  if (o.budget) j["budget"] = internal::budget_json(*o.budget);
+  return j;
 }
 
 MeasurementOutcome outcome_from_json(const json& j) {
@@ -328,6 +328,7 @@ MeasurementOutcome outcome_from_json(const json& j) {
   o.wall_seconds = j.at("wall_seconds").get<double>();
   o.diameter = measurand_from_json(j.at("diameter"));
   o.roundness = measurand_from_json(j.at("roundness"));
+  if (const auto b = j.find("budget"); b != j.end()) o.budget = internal::budget_from_json(*b);
   return o;
 }
 
@@ -419,6 +420,38 @@ json summary_json(const std::vector<SummaryRow>& rows) {
                  {"mean_En", r.mean_en},
                  {"rms_En", r.rms_en}});
   return a;
+}
+
+/// budget.csv (docs/validation.md, "Output directory"): per measurement one row per error source, then the
+/// quadrature sum √Σu_i² (with its ratio to the full u) and the full run's u over the same
+/// trials. u in µm for both measurands; shares u_i²/Σu_j² as fractions.
+std::string budget_csv(const std::vector<MeasurementOutcome>& outcomes) {
+  std::string out =
+      "id,location,orientation_deg,height,mode,trials,source,evaluated,u_diameter_um,"
+      "share_diameter,u_roundness_um,share_roundness,ratio_diameter,ratio_roundness\n";
+  for (const auto& m : outcomes) {
+    if (!m.budget) continue;
+    const UncertaintyBudget& b = *m.budget;
+    const std::string head = m.id + "," + m.location + "," + shortest(m.orientation_deg) + "," +
+                             std::string(to_string(m.height)) + "," +
+                             std::string(em::to_string(m.mode)) + "," +
+                             std::to_string(b.trials) + ",";
+    const auto um = [](double mm) { return cell(mm * kUmPerMm); };
+    for (const SourceContribution& c : b.sources) {
+      out += head + std::string(em::to_string(c.source)) + "," +
+             (c.evaluated ? "true," : "false,") + um(c.diameter_u_mm) + "," +
+             cell(c.diameter_share) + "," + um(c.roundness_u_mm) + "," +
+             cell(c.roundness_share) + ",,\n";
+    }
+    out += head + "quadrature_sum,," + um(b.diameter_quadrature_mm) + ",," +
+           um(b.roundness_quadrature_mm) + ",," +
+           cell(internal::budget_ratio(b.diameter_quadrature_mm, b.diameter_full_u_mm)) + "," +
+           cell(internal::budget_ratio(b.roundness_quadrature_mm, b.roundness_full_u_mm)) +
+           "\n";
+    out += head + "full_run,," + um(b.diameter_full_u_mm) + ",," + um(b.roundness_full_u_mm) +
+           ",,,\n";
+  }
+  return out;
 }
 
 constexpr std::array<const char*, 5> kTreatments = {"uncorrected", "corrected", "paper",
@@ -604,6 +637,10 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
   evaluation.reference = ev.reference_circle;
   evaluation.filter_cutoff_upr = ev.filter_cutoff_upr;
   const bool run_denoised = options.denoised_treatment && ev.filter_cutoff_upr.has_value();
+  // The budget's settings reach the fingerprint through the evaluation settings
+  // (campaign_json below), so a run with other budget settings recomputes.
+  const std::optional<BudgetOptions> budget =
+      ev.budget ? std::optional<BudgetOptions>(BudgetOptions{ev.budget_trials}) : std::nullopt;
 
   for (std::size_t i = 0; i < campaign.measurements.size(); ++i) try {
     const CampaignMeasurement& entry = campaign.measurements[i];
@@ -670,6 +707,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     uo.monte_carlo.cancel = options.cancel;
     uo.roundness_bias = ev.bias_treatment;
     uo.trial = ev.trial;
+    uo.budget = budget;
     const RingUncertaintyResult a = evaluate_ring_uncertainty(model, measured, uo);
     m.trial = std::string(to_string(a.trial.kind));
     if (a.monte_carlo.status == uncertainty::RunStatus::cancelled) {
@@ -680,6 +718,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                  a.diameter, "paper", a.diameter, 1.0, "mm");
     fill_outcome(m.roundness, a.estimate.roundness_mm, a.monte_carlo.summaries[roundness],
                  a.roundness, to_string(a.roundness_treatment), a.roundness_paper, 1000.0, "µm");
+    m.budget = a.budget;
 
     // Treatment (b): the same virtual experiment on the denoised virtual truth.
     m.diameter.corrected_denoised_mm = m.diameter.u_denoised_mm = kNaN;
@@ -688,6 +727,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
       const em::Measurement den = denoised_ring(a.best_estimate, *ev.filter_cutoff_upr);
       uo.monte_carlo.seed = measurement_seed(ev.seed, entry.id + "#denoised");
       uo.roundness_bias = RoundnessBiasTreatment::paper;
+      uo.budget.reset();  // the budget decomposes the study's run only
       const RingUncertaintyResult b = evaluate_ring_uncertainty_on_surface(model, den, uo);
       if (b.monte_carlo.status == uncertainty::RunStatus::cancelled) {
         outcome.cancelled = true;
@@ -754,6 +794,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
   for (const auto& m : outcome.measurements) {
     json j = outcome_to_json(m);
     j.erase("wall_seconds");  // the tables are the same whether computed or resumed
+    if (j.contains("budget")) j["budget"].erase("wall_seconds");
     results.push_back(std::move(j));
   }
   errormodel::OutputTransaction tables;  // the campaign's tables appear together
@@ -775,6 +816,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
   if (!outcome.treatments.empty())
     tables.stage((out_dir / "treatments.csv").string(),
                                       treatments_csv(outcome.treatments));
+  if (budget) tables.stage((out_dir / "budget.csv").string(), budget_csv(outcome.measurements));
   json info = {{"campaign", campaign.source},
                {"description", campaign.description},
                {"measurements", outcome.measurements.size()},
@@ -791,6 +833,8 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                {"denoised_treatment", run_denoised},
                {"bias_treatment", std::string(to_string(ev.bias_treatment))},
                {"kinematic_errors", ev.kinematics_corrected ? "corrected" : "uncertainty_only"},
+               {"budget", ev.budget},
+               {"budget_trials", budget ? json(budget_trials(*budget, ev.trials)) : json()},
                {"trial", std::string(to_string(ev.trial))},
                {"wall_seconds_this_run", outcome.wall_seconds}};
   info["vcmm_version"] = std::string(vcmm_version());
@@ -800,6 +844,15 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
   for (const auto& [k, v] : options.provenance) info[k] = v;
   tables.stage((out_dir / "run_info.json").string(), info.dump(1) + "\n");
   tables.commit();
+  if (!budget) {
+    // An earlier run's budget.csv in the same directory would describe other results.
+    std::error_code ec;
+    fs::remove(out_dir / "budget.csv", ec);
+    if (ec)
+      throw em::OutputError((out_dir / "budget.csv").string() +
+                            ": cannot remove the budget table of an earlier run: " +
+                            ec.message());
+  }
   return outcome;
 }
 

@@ -13,6 +13,7 @@
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/point.h"
 #include "vcmm/geometry/text_lines.h"
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::validation {
 namespace {
@@ -182,9 +183,7 @@ MeasurementFileKind detect_measurement_file_kind(const std::string& text) {
 }
 
 em::Measurement read_measurement_file(const std::string& path, const MeasurementSetup& setup) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InvalidInput(path + ": cannot open the measurement file");
-  const std::string text{std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+  const std::string text = geometry::read_text_file(path, "measurement file");
   std::istringstream in(text);
   switch (detect_measurement_file_kind(text)) {
     case MeasurementFileKind::vcmm_measurement:

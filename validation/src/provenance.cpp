@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "vcmm_revision.h"  // generated at build time (cmake/vcmm_revision.cmake)
+#include "vcmm/geometry/text_file.h"
 
 namespace vcmm::validation {
 
@@ -94,11 +95,7 @@ std::string sha256_hex(std::string_view bytes) {
 }
 
 std::string file_sha256(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": cannot read the file to record its digest");
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw std::invalid_argument(path + ": read error while computing its digest");
-  return sha256_hex(bytes);
+  return sha256_hex(geometry::read_text_file(path, "file (to record its digest)"));
 }
 
 }  // namespace vcmm::validation

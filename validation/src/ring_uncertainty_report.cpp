@@ -7,7 +7,9 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 
+#include "internal/budget_json.h"
 #include "internal/number_text.h"
 #include "vcmm/validation/provenance.h"
 
@@ -87,10 +89,6 @@ bool adds_in_quadrature(double ratio, std::uint64_t trials) {
   return std::abs(ratio - 1.0) <= 4.0 / std::sqrt(2.0 * static_cast<double>(trials - 1));
 }
 
-double ratio_of(double quadrature, double full) {
-  return full > 0.0 ? quadrature / full : std::numeric_limits<double>::quiet_NaN();
-}
-
 std::string budget_note(const UncertaintyBudget& b) {
   std::string note =
       "Each source alone (the others at their estimates), on the very random numbers it has in "
@@ -106,8 +104,10 @@ std::string budget_note(const UncertaintyBudget& b) {
       return out + ", the u_i add in quadrature to Monte Carlo precision.";
     return out + ", the u_i do NOT add in quadrature.";
   };
-  note += sentence("Diameter", ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm));
-  note += sentence("Roundness", ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm));
+  note += sentence("Diameter",
+                   internal::budget_ratio(b.diameter_quadrature_mm, b.diameter_full_u_mm));
+  note += sentence("Roundness",
+                   internal::budget_ratio(b.roundness_quadrature_mm, b.roundness_full_u_mm));
   note +=
       " RONt is not linear in the errors (a peak-to-valley of summed deviations is not a sum; "
       "each source alone biases it upward on its own): its u_i need not add in quadrature, and "
@@ -117,6 +117,14 @@ std::string budget_note(const UncertaintyBudget& b) {
 
 nlohmann::json number_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+namespace internal {
+
+double budget_ratio(double quadrature, double full) {
+  return full > 0.0 ? quadrature / full : std::numeric_limits<double>::quiet_NaN();
 }
 
 nlohmann::json budget_json(const UncertaintyBudget& b) {
@@ -139,11 +147,40 @@ nlohmann::json budget_json(const UncertaintyBudget& b) {
             {"full_diameter_u_mm", b.diameter_full_u_mm},
             {"full_roundness_u_um", b.roundness_full_u_mm * kUmPerMm},
             {"diameter_ratio",
-             number_or_null(ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm))},
+             number_or_null(budget_ratio(b.diameter_quadrature_mm, b.diameter_full_u_mm))},
             {"roundness_ratio",
-             number_or_null(ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm))}}},
+             number_or_null(budget_ratio(b.roundness_quadrature_mm, b.roundness_full_u_mm))}}},
           {"note", budget_note(b)}};
 }
+
+UncertaintyBudget budget_from_json(const nlohmann::json& j) {
+  UncertaintyBudget b;
+  b.trials = j.at("trials").get<std::uint64_t>();
+  b.wall_seconds = j.at("wall_seconds").get<double>();
+  for (const nlohmann::json& s : j.at("sources")) {
+    SourceContribution c;
+    const std::string name = s.at("source").get<std::string>();
+    const auto source = errormodel::error_source_from_string(name);
+    if (!source) throw std::invalid_argument("budget: unknown error source \"" + name + "\"");
+    c.source = *source;
+    c.evaluated = s.at("evaluated").get<bool>();
+    c.diameter_u_mm = s.at("diameter_u_mm").get<double>();
+    c.roundness_u_mm = s.at("roundness_u_um").get<double>() / kUmPerMm;
+    c.diameter_share = s.at("share_of_variance").at("diameter").get<double>();
+    c.roundness_share = s.at("share_of_variance").at("roundness").get<double>();
+    b.sources.push_back(c);
+  }
+  const nlohmann::json& q = j.at("quadrature_sum");
+  b.diameter_quadrature_mm = q.at("diameter_u_mm").get<double>();
+  b.roundness_quadrature_mm = q.at("roundness_u_um").get<double>() / kUmPerMm;
+  b.diameter_full_u_mm = q.at("full_diameter_u_mm").get<double>();
+  b.roundness_full_u_mm = q.at("full_roundness_u_um").get<double>() / kUmPerMm;
+  return b;
+}
+
+}  // namespace internal
+
+namespace {
 
 /// A share as a bar of `width` characters and a percentage: "######     54 %".
 std::string share_bar(double share) {
@@ -209,8 +246,8 @@ void budget_text(const UncertaintyBudget& b, std::ostringstream& os) {
     std::snprintf(t, sizeof t, "%.3f", r);
     return std::isfinite(r) ? std::string(t) : std::string("-");
   };
-  row("ratio", ratio_text(ratio_of(b.diameter_quadrature_mm, b.diameter_full_u_mm)),
-      ratio_text(ratio_of(b.roundness_quadrature_mm, b.roundness_full_u_mm)));
+  row("ratio", ratio_text(internal::budget_ratio(b.diameter_quadrature_mm, b.diameter_full_u_mm)),
+      ratio_text(internal::budget_ratio(b.roundness_quadrature_mm, b.roundness_full_u_mm)));
   os << wrapped(budget_note(b), 94);
 }
 
@@ -264,7 +301,7 @@ std::string ring_uncertainty_json(const RingUncertaintyResult& result,
         {"u_of_surrogate_estimate", z.standard_uncertainty * kUmPerMm}};
   }
   if (mc.correlation.size() == 4) j["correlation_diameter_roundness"] = mc.correlation[1];
-  if (result.budget) j["budget"] = budget_json(*result.budget);
+  if (result.budget) j["budget"] = internal::budget_json(*result.budget);
   return j.dump(2) + "\n";
 }
 

@@ -93,6 +93,13 @@ struct EvaluationSettings {
   /// removed from the data) or "uncertainty_only" (not corrected, only in the uncertainty:
   /// errormodel::with_kinematics_uncorrected).
   bool kinematics_corrected = true;
+  /// "budget": also the uncertainty budget of every measurement (ring_uncertainty_budget.h:
+  /// each error source alone on the same random numbers; one more run per source). Off by
+  /// default.
+  bool budget = false;
+  /// "budget_trials": trials of each budget run, in [min_campaign_trials, trials]; 0 (key
+  /// absent): as many as the measurement's run. Only with budget.
+  std::uint64_t budget_trials = 0;
   /// "trial": "auto" (default: the spectral trial where it applies), "exact" or "spectral"
   /// (trial_kind.h; the first Monte Carlo run of every measurement).
   TrialKind trial = TrialKind::automatic;
@@ -205,8 +212,10 @@ struct Campaign {
 /// unit are expected); types; finite numbers; enumerations (reference_circle MZ|MI|LS|MC,
 /// height top|middle|bottom, mode scanning|touch_trigger); filter_cutoff_upr > 0 or null;
 /// trials an integer in [min_campaign_trials, max_campaign_trials]; seed an unsigned 64-bit
-/// integer; coverage_probability in (0, 1); k > 0; at least one measurement; ids matching
-/// [A-Za-z0-9_.-]+, not "." or "..", at most max_measurement_id_length characters, unique;
+/// integer; coverage_probability in (0, 1); k > 0; budget a boolean; budget_trials only with
+/// "budget": true, an integer in [min_campaign_trials, trials]; at least one measurement; ids
+/// matching [A-Za-z0-9_.-]+, not "." or "..", at most max_measurement_id_length characters,
+/// unique;
 /// location labels matching [A-Za-z0-9_.-]+ (they go into CSV tables unquoted); location_mm
 /// three numbers; temperature_c in [−50, 100] °C (errormodel/physical_ranges.h: a kelvin value is caught); a reference
 /// with roundness and/or diameter, each in exactly one of its two forms (value_um ≥ 0,

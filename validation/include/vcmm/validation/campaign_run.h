@@ -19,8 +19,8 @@
 //                E_n = (x_ref − y) / √((k u_ref)² + (k u + |b|)²)
 // Resumable: each finished measurement is written as OUT/measurements/<id>.json (atomically,
 // after its samples and residuals) with a fingerprint of everything its numbers depend on
-// (model, points and reference files' bytes, the entry, the evaluation settings, the
-// treatments, the true values); a rerun loads every measurement whose fingerprint matches
+// (model, points and reference files' bytes, the entry, the evaluation settings — the budget's
+// among them —, the treatments, the true values); a rerun loads every measurement whose fingerprint matches
 // instead of recomputing it, so an interrupted and restarted run gives the same tables, bit
 // for bit, as an uninterrupted one.
 #pragma once
@@ -37,6 +37,7 @@
 #include "vcmm/errormodel/measurement.h"
 #include "vcmm/validation/campaign.h"
 #include "vcmm/validation/ring_experiment.h"
+#include "vcmm/validation/ring_uncertainty_budget.h"
 
 namespace vcmm::validation {
 
@@ -79,6 +80,8 @@ struct MeasurementOutcome {
   std::uint64_t trials = 0;
   std::string trial = "exact";  ///< the first run's trial: "exact" or "spectral" (trial_kind.h)
   MeasurandOutcome diameter, roundness;
+  /// The uncertainty budget of the study's run (evaluation.budget; ring_uncertainty_budget.h).
+  std::optional<UncertaintyBudget> budget;
   std::string fingerprint;
   double wall_seconds = 0.0;  ///< time spent computing it (0 when loaded)
   bool resumed = false;       ///< loaded from a previous run's file
@@ -131,9 +134,10 @@ struct CampaignOutcome {
 };
 
 /// Runs the campaign into `output_dir` (created if needed): per measurement the files
-/// samples/<id>.csv, residuals/<id>.csv and measurements/<id>.json; then results.csv,
-/// results.json, summary.csv, summary.json, treatments.csv (with truth) and run_info.json,
-/// all written atomically. Throws CampaignError (naming the entry) when a points file's
+/// samples/<id>.csv, residuals/<id>.csv and measurements/<id>.json (with its uncertainty
+/// budget when evaluation.budget asks for it); then results.csv, results.json, summary.csv,
+/// summary.json, treatments.csv (with truth), budget.csv (with evaluation.budget; a stale one
+/// of an earlier run is removed otherwise) and run_info.json, all written atomically. Throws CampaignError (naming the entry) when a points file's
 /// metadata contradicts its setup or a reference cannot be evaluated, geometry::InvalidInput /
 /// errormodel::InvalidParameter for bad model or points files, std::runtime_error when a file
 /// cannot be written. When options.cancel becomes true the current measurement is abandoned,

@@ -1,7 +1,7 @@
 // `vcmm uncertainty --model MODEL.json --points MEASURED.csv [--trials M | --adaptive TOL_UM]
 //                   [--seed S] [--threads T] [--reference MZ|MI|LS|MC] [--filter-upr N|none]
 //                   [--bias-treatment shrinkage|paper] [--pilot-trials N] [--surrogate-trials N]
-//                   [--budget [--budget-trials N]]
+//                   [--budget [--budget-trials N]] [--trial auto|exact|spectral]
 //                   [--json] [-o OUT] [--samples OUT.csv] [--progress auto|always|never]`
 // Monte Carlo uncertainty (JCGM 101) of the diameter and roundness of one ring measurement,
 // with the bias and the bias-corrected estimates: the roundness by the shrinkage treatment
@@ -53,6 +53,7 @@ struct UncertaintyOptions {
   double height_mm = 0.0;
   bool budget = false;            // per-source uncertainty budget (ring_uncertainty_budget.h)
   std::uint64_t budget_trials = 0;  // 0: the main run's trials
+  std::string trial = "auto";       // the first run's trial (validation/trial_kind.h)
 };
 
 /// The metadata options as the library's MeasurementSetup; std::invalid_argument (exit 2)
@@ -104,6 +105,11 @@ int run_uncertainty(const UncertaintyOptions& o) {
     options.shrinkage.surrogate_trials = o.surrogate_trials;
     setup = measurement_setup(o);
     if (o.budget) options.budget = va::BudgetOptions{o.budget_trials};
+    options.trial = *va::trial_kind_from_string(o.trial);  // IsMember-checked
+    if (options.trial == va::TrialKind::spectral && o.budget)
+      throw std::invalid_argument("--trial spectral and --budget exclude each other: the "
+                                  "budget's one-at-a-time runs share the exact trial's random "
+                                  "numbers");
   } catch (const std::invalid_argument& ex) {
     std::cerr << "vcmm uncertainty: error: " << ex.what() << "\n";
     return kUsage;
@@ -241,6 +247,13 @@ void add_uncertainty_command(CLI::App& app, int* exit_code) {
                   "trials of each budget run (default and at most: the main run's)")
       ->check(CLI::Range(std::uint64_t{100}, std::uint64_t{100'000'000}))
       ->needs(budget);
+  cmd->add_option("--trial", opts->trial,
+                  "Monte Carlo trial of the first run: auto (default: spectral where it "
+                  "applies, else exact; the result says which and why), exact (point by point) "
+                  "or spectral (in-band harmonics; refused where it does not apply; "
+                  "docs/validation.md)")
+      ->check(CLI::IsMember({"auto", "exact", "spectral"}))
+      ->default_val("auto");
   cmd->add_flag("--json", opts->json, "print JSON instead of the table");
   cmd->add_option("-o,--output", opts->output, "write the report to this file (atomically)");
   cmd->add_option("--samples", opts->samples,

@@ -49,6 +49,7 @@ struct CampaignCliOptions {
   bool budget = false;
   std::uint64_t budget_trials = 0;  // 0: the campaign's (else the measurement's trials)
   std::string progress = "auto";
+  std::string trial;  // --trial: empty = the campaign's "trial" (validate) or auto (demo)
   // demo only
   std::uint64_t trials = 10000;
   std::uint64_t seed = 1;
@@ -162,6 +163,7 @@ std::string budget_arguments(const CampaignCliOptions& o) {
 int run_validate(const CampaignCliOptions& o) {
   return guarded("validate", [&] {
     va::Campaign campaign = va::read_campaign_file(o.campaign);
+    if (!o.trial.empty()) campaign.evaluation.trial = *va::trial_kind_from_string(o.trial);
     const std::string usage =
         apply_budget_options(o, campaign.evaluation, "evaluation.trials of " + o.campaign);
     if (!usage.empty()) {
@@ -170,6 +172,7 @@ int run_validate(const CampaignCliOptions& o) {
     }
     return run_campaign_cli(campaign, o.output, o, {}, "validate",
                             {{"command", "vcmm validate " + o.campaign + " -o " + o.output +
+                                             (o.trial.empty() ? std::string() : " --trial " + o.trial) +
                                              (o.denoised ? " --denoised" : "") +
                                              budget_arguments(o)}});
   });
@@ -202,6 +205,7 @@ int run_demo(const CampaignCliOptions& o) {
     ev.reference_circle = *va::reference_circle_from_string(upper_case(o.reference));
     ev.kinematics_corrected = o.kinematics == "corrected";
     ev.bias_treatment = *va::roundness_bias_treatment_from_string(o.bias_treatment);
+    if (!o.trial.empty()) ev.trial = *va::trial_kind_from_string(o.trial);
     apply_budget_options(o, ev, "--trials");  // checked above
     const std::filesystem::path world_dir = std::filesystem::path(o.output) / "world";
     std::map<std::string, va::RingMeasurands> truth;
@@ -231,6 +235,7 @@ int run_demo(const CampaignCliOptions& o) {
                          std::to_string(o.world_seed) + " --reference " + upper_case(o.reference) +
                          " --form-scale " + internal_shortest(o.form_scale) + " --kinematics " +
                          o.kinematics + " --bias-treatment " + o.bias_treatment +
+                         (o.trial.empty() ? std::string() : " --trial " + o.trial) +
                          (o.denoised ? " --denoised" : "") + budget_arguments(o)},
          {"world", (world_dir / "campaign.json").string()},
          {"form_scale", internal_shortest(o.form_scale)}});
@@ -259,6 +264,11 @@ void add_common(CLI::App* cmd, CampaignCliOptions& o) {
                   "progress bar on stderr: auto (when a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}))
       ->default_val("auto");
+  cmd->add_option("--trial", o.trial,
+                  "Monte Carlo trial of the first run: auto (spectral where it applies), exact "
+                  "or spectral (docs/validation.md); validate: overrides the campaign's "
+                  "\"trial\"")
+      ->check(CLI::IsMember({"auto", "exact", "spectral"}));
 }
 
 }  // namespace

@@ -7,7 +7,9 @@
 // only (one run); BM_RingTrial one trial on one thread (no engine), for the cost split. BM_SurrogateTrial is one trial of the shrinkage treatment's second run
 // (simulate, LS, filter + RONt, harmonics, shrink + RONt; MZ and MI), and BM_RingShrinkage the
 // whole default evaluation (first run, pilot of 400, second run) of M = 10⁴ trials, as one
-// measurement of the demo costs.
+// measurement of the demo costs. BM_SpectralTrial is one spectral trial (spectral_trial.h; LS,
+// MZ, MI) on one thread, BM_SpectralMonteCarlo the whole first run with the spectral trial
+// (threads 1 and 2; issue 14's targets: ≥ 100 000 trials/s with LS, ≥ 40 000 with MZ, 2 cores).
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -17,6 +19,7 @@
 #include "vcmm/errormodel/ring_gauge.h"
 #include "vcmm/errormodel/virtual_cmm.h"
 #include "vcmm/validation/ring_experiment.h"
+#include "vcmm/validation/spectral_trial.h"
 
 namespace {
 
@@ -61,14 +64,9 @@ const char* label_of(va::ReferenceCircle c) {
   return "?";
 }
 
-void BM_RingTrial(benchmark::State& state) {
-  const em::Measurement best =
-      em::correct(measured_ring(state.range(0)), example_model());
-  va::RingEvaluationOptions e;
-  e.reference = circle_of(state.range(1));
-  va::RingTrial trial(example_model(),
-                      std::make_shared<const em::PreparedMeasurement>(best, example_model()), e,
-                      em::Stages::all());
+/// Times one trial a benchmark iteration (trial t on RandomStream(1, t)); items = trials.
+template <class Trial>
+void time_trials(benchmark::State& state, Trial& trial) {
   double out[2];
   std::uint64_t t = 0;
   for (auto _ : state) {
@@ -77,6 +75,17 @@ void BM_RingTrial(benchmark::State& state) {
     benchmark::DoNotOptimize(out);
   }
   state.SetItemsProcessed(state.iterations());
+}
+
+void BM_RingTrial(benchmark::State& state) {
+  const em::Measurement best =
+      em::correct(measured_ring(state.range(0)), example_model());
+  va::RingEvaluationOptions e;
+  e.reference = circle_of(state.range(1));
+  va::RingTrial trial(example_model(),
+                      std::make_shared<const em::PreparedMeasurement>(best, example_model()), e,
+                      em::Stages::all());
+  time_trials(state, trial);
   state.SetLabel(label_of(e.reference));
 }
 BENCHMARK(BM_RingTrial)
@@ -90,6 +99,7 @@ void BM_RingMonteCarlo(benchmark::State& state) {
   const em::Measurement measured = measured_ring(state.range(0));
   va::RingUncertaintyOptions o;
   o.roundness_bias = va::RoundnessBiasTreatment::paper;  // one run: trials/s of the engine
+  o.trial = va::TrialKind::exact;  // the point-wise trial (BM_SpectralMonteCarlo: the other)
   o.evaluation.reference = circle_of(state.range(2));
   o.monte_carlo.trials = 2000;
   o.monte_carlo.threads = static_cast<unsigned>(state.range(1));
@@ -154,6 +164,52 @@ BENCHMARK(BM_RingShrinkage)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(3);
+
+va::ReferenceCircle spectral_circle(std::int64_t code) {
+  return code == 0   ? va::ReferenceCircle::least_squares
+         : code == 1 ? va::ReferenceCircle::minimum_zone
+                     : va::ReferenceCircle::maximum_inscribed;
+}
+
+void BM_SpectralTrial(benchmark::State& state) {
+  const em::Measurement best = em::correct(measured_ring(state.range(0)), example_model());
+  va::RingEvaluationOptions e;
+  e.reference = spectral_circle(state.range(1));
+  va::SpectralRingTrial trial(
+      std::make_shared<const va::SpectralRingModel>(example_model(), best, e, em::Stages::all()));
+  time_trials(state, trial);
+  state.SetLabel(std::string(va::to_string(e.reference)));
+}
+BENCHMARK(BM_SpectralTrial)
+    ->Args({3600, 0})
+    ->Args({3600, 1})
+    ->Args({3600, 2})
+    ->Args({360, 1})
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_SpectralMonteCarlo(benchmark::State& state) {
+  const em::Measurement best = em::correct(measured_ring(state.range(0)), example_model());
+  va::RingEvaluationOptions e;
+  e.reference = spectral_circle(state.range(1));
+  const auto factory = va::spectral_ring_experiment_factory(example_model(), best, e,
+                                                            em::Stages::all());
+  vcmm::uncertainty::MonteCarloOptions o;
+  o.trials = 20000;
+  o.threads = static_cast<unsigned>(state.range(2));
+  for (auto _ : state) {
+    const auto r = vcmm::uncertainty::run_monte_carlo(factory, va::ring_measurand_count, o);
+    benchmark::DoNotOptimize(r.samples.data());
+  }
+  state.SetItemsProcessed(state.iterations() * 20000);
+  state.SetLabel(std::string(va::to_string(e.reference)));
+}
+BENCHMARK(BM_SpectralMonteCarlo)
+    ->Args({3600, 0, 1})
+    ->Args({3600, 0, 2})
+    ->Args({3600, 1, 1})
+    ->Args({3600, 1, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

@@ -352,6 +352,12 @@ void bind_results(py::module_& m) {
       .def_property_readonly("estimate_roundness",
                              [](const UncertaintyRun& r) { return r.result.estimate.roundness_mm; })
       .def_property_readonly("monte_carlo", [](const UncertaintyRun& r) { return r.result.monte_carlo; })
+      .def_property_readonly("trial",
+                             [](const UncertaintyRun& r) {
+                               return py::make_tuple(std::string(va::to_string(r.result.trial.kind)),
+                                                     r.result.trial.reason);
+                             },
+                             "(kind, reason): the trial the first run used ('exact' or 'spectral')")
       .def_property_readonly("samples",
                              [](const UncertaintyRun& r) { return samples_of(r.result.monte_carlo); },
                              "(trials, 2) array: diameter (mm), roundness (mm) of every trial")
@@ -383,7 +389,8 @@ void bind_ring_uncertainty(py::module_& m) {
          const std::string& reference, std::optional<double> filter_upr, double coverage,
          const std::string& bias_treatment, std::optional<std::uint64_t> pilot_trials,
          std::optional<std::uint64_t> surrogate_trials,
-         const std::optional<std::vector<std::string>>& sources, const py::object& progress) {
+         const std::optional<std::vector<std::string>>& sources, const py::object& progress,
+         const std::string& trial) {
         UncertaintyRun run;
         va::RingUncertaintyOptions& o = run.options;
         const auto circle = g::reference_circle_from_string(reference);
@@ -409,6 +416,11 @@ void bind_ring_uncertainty(py::module_& m) {
         o.roundness_bias = *treatment;
         if (pilot_trials) o.shrinkage.pilot_trials = *pilot_trials;
         if (surrogate_trials) o.shrinkage.surrogate_trials = *surrogate_trials;
+        const auto kind = va::trial_kind_from_string(trial);
+        if (!kind)
+          throw g::InvalidInput("uncertainty: trial must be 'auto', 'exact' or 'spectral'; got '" +
+                                trial + "'");
+        o.trial = *kind;
         o.provenance = {{"source", "python"}};
         // About every 100 ms: Ctrl-C (KeyboardInterrupt) and the caller's callback; either one
         // raising stops the run and the exception reaches the caller.
@@ -424,7 +436,7 @@ void bind_ring_uncertainty(py::module_& m) {
       "seed"_a = 1, "threads"_a = 0, "reference"_a = "MZ", "filter_upr"_a = 50.0,
       "coverage"_a = 0.95, "bias_treatment"_a = "shrinkage", "pilot_trials"_a = py::none(),
       "surrogate_trials"_a = py::none(), "sources"_a = py::none(),
-      "progress"_a = py::none());
+      "progress"_a = py::none(), "trial"_a = "auto");
 
   m.def("version", [] { return std::string(va::vcmm_version()); });
   m.def("revision", [] { return std::string(va::vcmm_revision()); });

@@ -330,7 +330,7 @@ def measurement(data, **setup):
 def uncertainty(model, data, *, trials=100000, adaptive_tolerance=None, seed=1, threads=0,
                 reference="MZ", filter_upr=50.0, coverage=0.95, bias_treatment="shrinkage",
                 pilot_trials=None, surrogate_trials=None, sources=None, progress=None,
-                **setup):
+                trial="auto", **setup):
     """Monte Carlo uncertainty (JCGM 101) of the LS diameter and the roundness RONt of one ring
     measurement, with bias and bias-corrected estimates, as ``vcmm uncertainty``
     (``vcmm::validation::evaluate_ring_uncertainty``).
@@ -340,7 +340,9 @@ def uncertainty(model, data, *, trials=100000, adaptive_tolerance=None, seed=1, 
     seed fixes every number whatever ``threads`` (0: all cores); reference 'MZ', 'MI', 'LS'
     or 'MC' and filter_upr (None: unfiltered) define RONt; bias_treatment 'shrinkage'
     (default) or 'paper' (the seed study's, always reported as ``roundness_paper``);
-    sources: error sources switched on (default all). progress: called as
+    sources: error sources switched on (default all). trial: the first run's Monte Carlo
+    trial, 'auto' (spectral where it applies), 'exact' or 'spectral' (docs/validation.md,
+    "The spectral trial"; ``trial`` of the result says which ran and why). progress: called as
     progress(done, planned) about every 0.1 s from the calling thread. The GIL is released
     while the trials run; Ctrl-C raises KeyboardInterrupt.
 
@@ -357,7 +359,7 @@ def uncertainty(model, data, *, trials=100000, adaptive_tolerance=None, seed=1, 
         filter_upr=None if filter_upr is None else float(filter_upr), coverage=float(coverage),
         bias_treatment=bias_treatment, pilot_trials=pilot_trials,
         surrogate_trials=surrogate_trials, sources=None if sources is None else list(sources),
-        progress=progress)
+        progress=progress, trial=str(trial))
 
 
 def validate(campaign, output_dir, *, threads=0, denoised=False, progress=None):

@@ -150,6 +150,37 @@ TEST(CliUncertainty, BadOptionsAndInputs) {
   EXPECT_NE(s.err.find("cut-off"), std::string::npos) << s.err;
 }
 
+// --trial: the report names the trial that ran and why (auto: spectral where it applies);
+// spectral is refused where it does not apply (exit 3, naming the reason) and with --budget
+// (exit 2); demo and validate check the value.
+TEST(CliUncertainty, TrialIsChosenRecordedAndRefusedWithAReason) {
+  const auto trial_of = [](const CliRun& r) {
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out)["monte_carlo"]["trial"];
+  };
+  const auto a = trial_of(run(uncertainty_args("--trials 200 --bias-treatment paper --json")));
+  EXPECT_EQ(a["requested"], "auto");
+  EXPECT_EQ(a["kind"], "spectral");
+  const auto e =
+      trial_of(run(uncertainty_args("--trials 200 --bias-treatment paper --json --trial exact")));
+  EXPECT_EQ(e["kind"], "exact");
+  const std::string unfiltered = "uncertainty --model '" + kModel + "' --points '" +
+                                 measurement().string() +
+                                 "' --filter-upr none --trials 200 --bias-treatment paper "
+                                 "--progress never --json";
+  const auto u = trial_of(run(unfiltered));
+  EXPECT_EQ(u["kind"], "exact");
+  EXPECT_NE(u["reason"].get<std::string>().find("filter"), std::string::npos) << u;
+  const CliRun refused = run(unfiltered + " --trial spectral");
+  EXPECT_EQ(refused.exit_code, 3);
+  EXPECT_NE(refused.err.find("spectral trial does not apply"), std::string::npos) << refused.err;
+  const CliRun budget = run(uncertainty_args("--trials 200 --budget --trial spectral"));
+  EXPECT_EQ(budget.exit_code, 2);
+  EXPECT_NE(budget.err.find("--budget"), std::string::npos) << budget.err;
+  EXPECT_EQ(run(uncertainty_args("--trials 200 --trial fast")).exit_code, 2);
+  EXPECT_EQ(run("demo -o '" + (scratch_dir() / "never").string() + "' --trial fast").exit_code, 2);
+}
+
 TEST(CliUncertainty, PlainCmmExportWithMetadataOptions) {
   // The bundled example export (x,y,z in the model's machine frame, no metadata header) runs
   // with the metadata given as options — the command docs/cli.md shows.

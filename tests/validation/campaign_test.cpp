@@ -202,6 +202,7 @@ TEST_F(CampaignTest, WriterRoundTripsExactly) {
   built.evaluation.seed = 0xDEADBEEFCAFEF00Dull;
   built.evaluation.trials = 2000;
   built.evaluation.bias_treatment = RoundnessBiasTreatment::paper;
+  built.evaluation.trial = TrialKind::exact;
   built.evaluation.kinematics_corrected = false;
   CampaignMeasurement m;
   m.id = "C-O045-bottom-scan";
@@ -305,12 +306,16 @@ TEST_F(CampaignTest, UnknownKeysAreErrorsAnywhere) {
     bad["evaluation"]["kinematic_errors"] = true;
     EXPECT_EQ(rule_of(bad),
               "evaluation.kinematic_errors: must be \"corrected\" or \"uncertainty_only\"; got true");
+    bad = doc;
+    bad["evaluation"]["trial"] = "fast";
+    EXPECT_EQ(rule_of(bad),
+              "evaluation.trial: must be \"auto\", \"exact\" or \"spectral\"; got \"fast\"");
   }
   doc["evaluation"]["trails"] = 10;
   EXPECT_EQ(rule_of(doc),
             "evaluation: unknown key \"trails\" (allowed here: reference_circle, "
             "filter_cutoff_upr, trials, seed, coverage_probability, k, bias_treatment, "
-            "kinematic_errors, budget, budget_trials)");
+            "kinematic_errors, budget, budget_trials, trial)");
   doc = example();
   doc["measurements"][1]["setup"]["colour"] = "red";
   EXPECT_EQ(rule_of(doc),

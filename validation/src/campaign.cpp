@@ -268,7 +268,7 @@ class Reader {
               {{"reference_circle", ""}, {"filter_cutoff_upr", "the filter cut-off"},
                {"trials", ""}, {"seed", ""}, {"coverage_probability", ""}, {"k", ""},
                {"bias_treatment", ""}, {"kinematic_errors", ""}, {"budget", ""},
-               {"budget_trials", ""}},
+               {"budget_trials", ""}, {"trial", ""}},
               path);
     EvaluationSettings e;
     if (const json* rc = find(v, "reference_circle")) {
@@ -325,6 +325,12 @@ class Reader {
       // At most the measurement's trials: each budget run is compared with the full run's u
       // over the same trials, where the random numbers coincide (ring_uncertainty_budget.h).
       e.budget_trials = count(*bt, p, min_campaign_trials, e.trials, " (evaluation.trials)");
+    }
+    if (const json* t = find(v, "trial")) {
+      const auto kind = t->is_string() ? trial_kind_from_string(t->get<std::string>())
+                                       : std::nullopt;
+      if (!kind) fail(join(path, "trial"), "must be \"auto\", \"exact\" or \"spectral\"", *t);
+      e.trial = *kind;
     }
     return e;
   }
@@ -665,6 +671,7 @@ std::string campaign_json(const Campaign& c) {
   e["kinematic_errors"] = c.evaluation.kinematics_corrected ? "corrected" : "uncertainty_only";
   e["budget"] = c.evaluation.budget;
   if (c.evaluation.budget_trials != 0) e["budget_trials"] = c.evaluation.budget_trials;
+  e["trial"] = std::string(to_string(c.evaluation.trial));
   ordered_json list = ordered_json::array();
   for (const CampaignMeasurement& m : c.measurements) {
     ordered_json mj;

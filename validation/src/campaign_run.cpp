@@ -306,6 +306,7 @@ json outcome_to_json(const MeasurementOutcome& o) {
             {"points", o.points},
             {"seed", o.seed},
             {"trials", o.trials},
+            {"trial", o.trial},
             {"wall_seconds", o.wall_seconds},
             {"diameter", measurand_to_json(o.diameter)},
             {"roundness", measurand_to_json(o.roundness)}};
@@ -324,6 +325,7 @@ MeasurementOutcome outcome_from_json(const json& j) {
   o.points = j.at("points").get<std::size_t>();
   o.seed = j.at("seed").get<std::uint64_t>();
   o.trials = j.at("trials").get<std::uint64_t>();
+  o.trial = j.value("trial", std::string("exact"));  // files before the spectral trial
   o.wall_seconds = j.at("wall_seconds").get<double>();
   o.diameter = measurand_from_json(j.at("diameter"));
   o.roundness = measurand_from_json(j.at("roundness"));
@@ -713,9 +715,11 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
     uo.monte_carlo.cancel = options.cancel;
     uo.monte_carlo.process_group = group;
     uo.roundness_bias = ev.bias_treatment;
+    uo.trial = ev.trial;
     uo.budget = budget;
     const RingUncertaintyResult a = evaluate_ring_uncertainty(model, measured, uo);
     threads_used = a.monte_carlo.threads_used;
+    m.trial = std::string(to_string(a.trial.kind));
     if (a.monte_carlo.status == uncertainty::RunStatus::cancelled) {
       outcome.cancelled = true;
       break;
@@ -845,6 +849,7 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
                {"kinematic_errors", ev.kinematics_corrected ? "corrected" : "uncertainty_only"},
                {"budget", ev.budget},
                {"budget_trials", budget ? json(budget_trials(*budget, ev.trials)) : json()},
+               {"trial", std::string(to_string(ev.trial))},
                {"wall_seconds_this_run", outcome.wall_seconds},
                // How this run was spread (the numbers do not depend on it; docs/mpi.md).
                {"monte_carlo", {{"ranks", group != nullptr ? group->size() : 1u},

@@ -139,8 +139,14 @@ RingUncertaintyResult run_on_surface(const errormodel::DigitalModel& model,
   RingUncertaintyResult result;
   result.best_estimate = std::move(surface);
   result.estimate = evaluate_ring(result.best_estimate, options.evaluation);
-  const auto factory = ring_experiment_factory(model, result.best_estimate, options.evaluation,
-                                               options.stages);
+  result.trial = choose_ring_trial(model, result.best_estimate, options.evaluation,
+                                   options.stages, options.trial, options.budget.has_value());
+  const auto factory =
+      result.trial.kind == TrialKind::spectral
+          ? spectral_ring_experiment_factory(model, result.best_estimate, options.evaluation,
+                                             options.stages)
+          : ring_experiment_factory(model, result.best_estimate, options.evaluation,
+                                    options.stages);
   const bool shrinkage = options.roundness_bias == RoundnessBiasTreatment::shrinkage;
   uncertainty::MonteCarloOptions first = options.monte_carlo;
   // Trials planned after the first run of m trials: the shrinkage's, the budget's.

@@ -275,7 +275,10 @@ std::string ring_uncertainty_json(const RingUncertaintyResult& result,
                       {"status", std::string(uncertainty::to_string(mc.status))},
                       {"message", mc.message},
                       {"adaptive", options.adaptive.has_value()},
-                      {"wall_seconds", mc.wall_seconds}};
+                      {"wall_seconds", mc.wall_seconds},
+                      {"trial", {{"requested", std::string(to_string(options.trial))},
+                                 {"kind", std::string(to_string(result.trial.kind))},
+                                 {"reason", result.trial.reason}}}};
   if (mc.summaries.empty()) {  // cancelled below the minimum sample count
     j["measurands"] = nullptr;
     return j.dump(2) + "\n";
@@ -315,6 +318,7 @@ std::string ring_uncertainty_text(const RingUncertaintyResult& result,
     os << " (" << mc.message << ")";
   std::snprintf(line, sizeof line, ", %.2f s\n", mc.wall_seconds);
   os << line;
+  os << "trial: " << to_string(result.trial.kind) << " (" << result.trial.reason << ")\n";
   os << "roundness: RONt about the " << to_string(options.evaluation.reference) << " circle, ";
   if (options.evaluation.filter_cutoff_upr) {
     os << "Gaussian filter " << internal::shortest(*options.evaluation.filter_cutoff_upr)

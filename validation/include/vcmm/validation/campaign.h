@@ -31,6 +31,7 @@
 #include "vcmm/validation/form_bias.h"
 #include "vcmm/validation/measurement_input.h"
 #include "vcmm/validation/reference_values.h"
+#include "vcmm/validation/trial_kind.h"
 
 namespace vcmm::validation {
 
@@ -99,6 +100,9 @@ struct EvaluationSettings {
   /// "budget_trials": trials of each budget run, in [min_campaign_trials, trials]; 0 (key
   /// absent): as many as the measurement's run. Only with budget.
   std::uint64_t budget_trials = 0;
+  /// "trial": "auto" (default: the spectral trial where it applies), "exact" or "spectral"
+  /// (trial_kind.h; the first Monte Carlo run of every measurement).
+  TrialKind trial = TrialKind::automatic;
   friend bool operator==(const EvaluationSettings&, const EvaluationSettings&) = default;
 };
 

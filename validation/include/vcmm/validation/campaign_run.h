@@ -79,6 +79,7 @@ struct MeasurementOutcome {
   std::size_t points = 0;
   std::uint64_t seed = 0;
   std::uint64_t trials = 0;
+  std::string trial = "exact";  ///< the first run's trial: "exact" or "spectral" (trial_kind.h)
   MeasurandOutcome diameter, roundness;
   /// The uncertainty budget of the study's run (evaluation.budget; ring_uncertainty_budget.h).
   std::optional<UncertaintyBudget> budget;

@@ -37,6 +37,7 @@
 #include "vcmm/validation/reference_values.h"  // ReferenceCircle
 #include "vcmm/validation/ring_evaluation.h"
 #include "vcmm/validation/ring_uncertainty_budget.h"
+#include "vcmm/validation/spectral_trial.h"  // TrialKind
 
 namespace vcmm::validation {
 
@@ -99,6 +100,10 @@ struct RingUncertaintyOptions {
   ShrinkageOptions shrinkage;  ///< the shrinkage treatment's tunables
   /// Set: also the uncertainty budget (ring_uncertainty_budget.h), one more run per source.
   std::optional<BudgetOptions> budget;
+  /// The first run's trial (spectral_trial.h, choose_ring_trial): by default the spectral one
+  /// where it applies. The shrinkage treatment's pilot and second run and the budget's runs
+  /// are always exact.
+  TrialKind trial = TrialKind::automatic;
   /// Written into the report's "provenance" object beside the vcmm version and revision
   /// (e.g. model_file, model_sha256, points_file, points_sha256: provenance.h).
   std::map<std::string, std::string> provenance;
@@ -116,6 +121,7 @@ struct RingUncertaintyResult {
   errormodel::Measurement best_estimate;  ///< the corrected data x̂
   RingMeasurands estimate;                ///< y = f(x̂)
   uncertainty::MonteCarloResult monte_carlo;  ///< the study's virtual experiment, on x̂
+  TrialChoice trial;  ///< which trial `monte_carlo` ran (exact or spectral) and why
   uncertainty::BiasCorrection diameter;   ///< the study's correction (never refused)
   /// The roundness as the chosen treatment reports it (options.roundness_bias).
   uncertainty::BiasCorrection roundness;

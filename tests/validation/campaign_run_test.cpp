@@ -430,6 +430,12 @@ TEST_F(CampaignRun, TheUncertaintyBudgetIsOffByDefaultAndPerMeasurementWhenAsked
   const CampaignOutcome off = run_campaign(c, out, {});
   EXPECT_EQ(off.resumed, 0u);
   EXPECT_FALSE(fs::exists(out / "budget.csv"));
+  // A table with truth left by an earlier run (a demo's treatments.csv) goes as well: this
+  // campaign has no truth, so the table would describe other results.
+  std::ofstream(out / "treatments.csv") << "measurand,treatment,n\n";
+  const CampaignOutcome no_truth = run_campaign(c, out, {});
+  ASSERT_TRUE(no_truth.treatments.empty());
+  EXPECT_FALSE(fs::exists(out / "treatments.csv"));
 }
 
 TEST(CampaignSummary, StatisticsByHand) {

@@ -861,15 +861,18 @@ CampaignOutcome run_campaign(const Campaign& campaign, const fs::path& out_dir,
   for (const auto& [k, v] : options.provenance) info[k] = v;
   tables.stage((out_dir / "run_info.json").string(), info.dump(1) + "\n");
   tables.commit();
-  if (!budget) {
-    // An earlier run's budget.csv in the same directory would describe other results.
+  // An optional table this run does not write, left by an earlier run in the same directory
+  // (a demo's treatments.csv under a later `validate`, a budget run's budget.csv), would
+  // describe other results beside these.
+  const auto remove_stale = [&out_dir](const char* name, const char* what) {
     std::error_code ec;
-    fs::remove(out_dir / "budget.csv", ec);
+    fs::remove(out_dir / name, ec);
     if (ec)
-      throw em::OutputError((out_dir / "budget.csv").string() +
-                            ": cannot remove the budget table of an earlier run: " +
-                            ec.message());
-  }
+      throw em::OutputError((out_dir / name).string() + ": cannot remove the " + what +
+                            " of an earlier run: " + ec.message());
+  };
+  if (!budget) remove_stale("budget.csv", "budget table");
+  if (outcome.treatments.empty()) remove_stale("treatments.csv", "treatments table (with truth)");
   return outcome;
 }
 

@@ -479,12 +479,42 @@ py::dict measurand_dict(const va::MeasurandOutcome& o) {
   return d;
 }
 
+/// A measurement's uncertainty budget (ring_uncertainty_budget.h) as plain data, mm.
+py::dict budget_dict(const va::UncertaintyBudget& b) {
+  py::list sources;
+  for (const va::SourceContribution& c : b.sources)
+    sources.append(py::dict("source"_a = std::string(em::to_string(c.source)),
+                            "evaluated"_a = c.evaluated, "diameter_u_mm"_a = c.diameter_u_mm,
+                            "diameter_share"_a = c.diameter_share,
+                            "roundness_u_mm"_a = c.roundness_u_mm,
+                            "roundness_share"_a = c.roundness_share));
+  return py::dict("trials"_a = b.trials, "sources"_a = sources,
+                  "diameter_quadrature_mm"_a = b.diameter_quadrature_mm,
+                  "diameter_full_u_mm"_a = b.diameter_full_u_mm,
+                  "roundness_quadrature_mm"_a = b.roundness_quadrature_mm,
+                  "roundness_full_u_mm"_a = b.roundness_full_u_mm);
+}
+
 void bind_campaign(py::module_& m) {
   m.def(
       "run_campaign",
       [](const std::string& campaign_path, const std::string& output_dir, unsigned threads,
-         bool denoised, const py::object& progress) {
-        const va::Campaign campaign = va::read_campaign_file(campaign_path);
+         bool denoised, const py::object& progress, std::optional<bool> budget,
+         std::uint64_t budget_trials) {
+        va::Campaign campaign = va::read_campaign_file(campaign_path);
+        // As `vcmm validate --budget [--budget-trials N]`: overrides the campaign's setting.
+        if (budget) campaign.evaluation.budget = *budget;
+        if (budget_trials != 0) {
+          if (!campaign.evaluation.budget)
+            throw py::value_error("budget_trials needs budget=True (or \"budget\": true in "
+                                  "the campaign)");
+          if (budget_trials < va::min_campaign_trials || budget_trials > campaign.evaluation.trials)
+            throw py::value_error("budget_trials must be from " +
+                                  std::to_string(va::min_campaign_trials) + " to the campaign's " +
+                                  std::to_string(campaign.evaluation.trials) + " trials; got " +
+                                  std::to_string(budget_trials));
+          campaign.evaluation.budget_trials = budget_trials;
+        }
         va::CampaignRunOptions o;
         o.threads = threads;
         o.denoised_treatment = denoised;
@@ -508,6 +538,8 @@ void bind_campaign(py::module_& m) {
           d["trials"] = x.trials;
           d["diameter"] = measurand_dict(x.diameter);
           d["roundness"] = measurand_dict(x.roundness);
+          d["trial"] = x.trial;
+          d["budget"] = x.budget ? py::object(budget_dict(*x.budget)) : py::object(py::none());
           d["wall_seconds"] = x.wall_seconds;
           d["resumed"] = x.resumed;
           measurements.append(d);
@@ -529,7 +561,7 @@ void bind_campaign(py::module_& m) {
                         "wall_seconds"_a = outcome.wall_seconds);
       },
       "campaign"_a, "output_dir"_a, "threads"_a = 0, "denoised"_a = false,
-      "progress"_a = py::none());
+      "progress"_a = py::none(), "budget"_a = py::none(), "budget_trials"_a = 0);
 }
 
 }  // namespace

@@ -362,7 +362,8 @@ def uncertainty(model, data, *, trials=100000, adaptive_tolerance=None, seed=1, 
         progress=progress, trial=str(trial))
 
 
-def validate(campaign, output_dir, *, threads=0, denoised=False, progress=None):
+def validate(campaign, output_dir, *, threads=0, denoised=False, progress=None, budget=None,
+             budget_trials=0):
     """Runs a validation campaign, as ``vcmm validate CAMPAIGN -o OUTPUT_DIR``
     (``vcmm::validation::run_campaign``; docs/validation.md): the uncertainty of every
     measurement, E_n and zeta against the references under each bias treatment, and the
@@ -376,7 +377,13 @@ def validate(campaign, output_dir, *, threads=0, denoised=False, progress=None):
     corrected_mm, u_corrected_mm, en, en_corrected, en_paper, ... — values in mm, NaN where
     there is nothing), ``summary`` (E_n statistics per factor level and treatment),
     ``treatments`` (with known truth), ``computed``, ``resumed``, ``cancelled``,
-    ``wall_seconds``.
+    ``wall_seconds``. Each measurement also says which Monte Carlo ``trial`` its first run took
+    ("exact" or "spectral") and carries its uncertainty ``budget`` (None without one): trials,
+    ``sources`` (per error source u_i and share u_i²/Σu_j² of diameter and roundness, mm),
+    the quadrature sums and the full run's u. ``budget=True``/``False`` overrides the
+    campaign's ``"budget"`` and ``budget_trials`` its ``"budget_trials"``, as
+    ``vcmm validate --budget --budget-trials N`` (docs/validation.md, "Uncertainty budget").
     """
     return _vcmm.run_campaign(_os.fspath(campaign), _os.fspath(output_dir), int(threads),
-                              bool(denoised), progress)
+                              bool(denoised), progress,
+                              None if budget is None else bool(budget), int(budget_trials))

@@ -447,3 +447,29 @@ def test_validate_equals_the_cli(tmp_path):
 
     assert all(m["resumed"] for m in again["measurements"])
     assert numbers(again["measurements"]) == numbers(got["measurements"])
+    assert all(m["budget"] is None and m["trial"] in ("exact", "spectral")
+               for m in got["measurements"])
+
+    # The uncertainty budget, as `vcmm validate --budget --budget-trials 100`: the same
+    # budget.csv, and per measurement the budget as plain data.
+    with pytest.raises(ValueError, match="budget_trials needs budget=True"):
+        vcmm.validate(world / "campaign.json", tmp_path / "pyb", budget_trials=100)
+    with pytest.raises(ValueError, match="budget_trials must be from 100"):
+        vcmm.validate(world / "campaign.json", tmp_path / "pyb", budget=True, budget_trials=500)
+    withb = vcmm.validate(world / "campaign.json", tmp_path / "pyb", threads=2, budget=True,
+                          budget_trials=100)
+    subprocess.run([exe, "validate", str(world / "campaign.json"), "-o", str(tmp_path / "clib"),
+                    "--threads", "2", "--progress", "never", "--budget", "--budget-trials",
+                    "100"], check=True, capture_output=True)
+    assert (tmp_path / "pyb" / "budget.csv").read_text() == \
+        (tmp_path / "clib" / "budget.csv").read_text()
+    for m in withb["measurements"]:
+        b = m["budget"]
+        assert b["trials"] == 100
+        assert [c["source"] for c in b["sources"]] == \
+            ["roughness", "temperature", "kinematic", "probe", "noise"]
+        assert math.isclose(sum(c["diameter_share"] for c in b["sources"]), 1.0, rel_tol=1e-12)
+        assert math.isclose(b["diameter_quadrature_mm"],
+                            math.sqrt(sum(c["diameter_u_mm"] ** 2 for c in b["sources"])),
+                            rel_tol=1e-12)
+        assert b["diameter_full_u_mm"] > 0

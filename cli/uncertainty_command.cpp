@@ -110,6 +110,12 @@ int run_uncertainty(const UncertaintyOptions& o) {
       throw std::invalid_argument("--trial spectral and --budget exclude each other: the "
                                   "budget's one-at-a-time runs share the exact trial's random "
                                   "numbers");
+    // Decided by the options alone, so a command-line error (exit 2); what depends on the
+    // data (an equiangular grid, radial normals) is checked on the data (exit 3).
+    if (options.trial == va::TrialKind::spectral && !options.evaluation.filter_cutoff_upr)
+      throw std::invalid_argument("--trial spectral needs the Gaussian filter: with "
+                                  "--filter-upr none the unfiltered RONt needs every harmonic, "
+                                  "which is the exact trial");
   } catch (const std::invalid_argument& ex) {
     std::cerr << "vcmm uncertainty: error: " << ex.what() << "\n";
     return kUsage;

@@ -108,6 +108,7 @@ TEST(CliExitCodes, BadOptionValuesExit2NamingTheOption) {
       {uncertainty_args(measurement(), "--coverage nan"), "--coverage"},
       {uncertainty_args(measurement(), "--coverage 1e-20"), "--coverage"},
       {uncertainty_args(measurement(), "--temperature 293.15"), "--temperature"},
+      {uncertainty_args(measurement(), "--trial spectral --filter-upr none"), "--trial spectral"},
       {simulate_args(kModel, "--ring nan -o " + quoted(out)), "--ring"},
       {simulate_args(kModel, "--temperature -300 -o " + quoted(out)), "--temperature"},
       {simulate_args(kModel, "--temperature 293.15 -o " + quoted(out)), "--temperature"},

@@ -8,8 +8,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "support/cli_run.h"
 #include "vcmm/validation/provenance.h"
@@ -171,9 +173,37 @@ TEST(CliUncertainty, TrialIsChosenRecordedAndRefusedWithAReason) {
   const auto u = trial_of(run(unfiltered));
   EXPECT_EQ(u["kind"], "exact");
   EXPECT_NE(u["reason"].get<std::string>().find("filter"), std::string::npos) << u;
+  // Refused by the options alone: a command-line error.
   const CliRun refused = run(unfiltered + " --trial spectral");
-  EXPECT_EQ(refused.exit_code, 3);
-  EXPECT_NE(refused.err.find("spectral trial does not apply"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("--trial spectral needs the Gaussian filter"), std::string::npos)
+      << refused.err;
+  // Refused by the data: the same ring with every two neighbouring points swapped in the file
+  // is no equiangular grid in file order (the exact trial sorts by angle and runs) — exit 3.
+  {
+    std::istringstream in(slurp(measurement()));
+    std::string text, line;
+    std::vector<std::string> rows;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#' || line.rfind("x_mm", 0) == 0)
+        text += line + "\n";
+      else
+        rows.push_back(line);
+    }
+    for (std::size_t i = 0; i + 1 < rows.size(); i += 2) std::swap(rows[i], rows[i + 1]);
+    for (const std::string& r : rows) text += r + "\n";
+    const fs::path swapped = scratch_dir() / "ring360_swapped.csv";
+    std::ofstream(swapped, std::ios::binary) << text;
+    const std::string args = "uncertainty --model '" + kModel + "' --points '" +
+                             swapped.string() +
+                             "' --trials 200 --bias-treatment paper --progress never --json";
+    const auto fallback = trial_of(run(args));
+    EXPECT_EQ(fallback["kind"], "exact") << fallback;
+    const CliRun data_refused = run(args + " --trial spectral");
+    EXPECT_EQ(data_refused.exit_code, 3) << data_refused.err;
+    EXPECT_NE(data_refused.err.find("spectral trial does not apply"), std::string::npos)
+        << data_refused.err;
+  }
   const CliRun budget = run(uncertainty_args("--trials 200 --budget --trial spectral"));
   EXPECT_EQ(budget.exit_code, 2);
   EXPECT_NE(budget.err.find("--budget"), std::string::npos) << budget.err;

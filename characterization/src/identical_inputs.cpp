@@ -7,6 +7,7 @@
 #include <iterator>
 #include <optional>
 #include <string>
+#include <utility>
 #include <string_view>
 #include <vector>
 
@@ -19,11 +20,9 @@ void refuse_identical_inputs(std::span<const InputFile> files) {
   std::vector<std::optional<std::string>> content(files.size());
   std::vector<std::size_t> hash(files.size(), 0);
   for (std::size_t i = 0; i < files.size(); ++i) {
-    try {  // an unreadable file is left to its reader, which names the problem
-      content[i].emplace(geometry::read_text_file(files[i].path, "file"));
-    } catch (const geometry::InvalidInput&) {
-      continue;
-    }
+    std::string text, reason;  // an unreadable file is left to its reader, which names it
+    if (!geometry::try_read_text_file(files[i].path, text, reason)) continue;
+    content[i].emplace(std::move(text));
     hash[i] = std::hash<std::string_view>{}(*content[i]);
   }
   for (std::size_t i = 0; i < files.size(); ++i) {

@@ -306,9 +306,10 @@ DigitalModel read_digital_model(std::istream& in, const std::string& source) {
 }
 
 DigitalModel read_digital_model_file(const std::string& path) {
-  if (const std::string why = geometry::unreadable_file_reason(path); !why.empty())
+  std::string text, why;
+  if (!geometry::try_read_text_file(path, text, why))
     throw InvalidParameter("", path + ": cannot read the digital-model file: " + why);
-  return parse_digital_model(geometry::read_text_file(path, "digital-model file"), path);
+  return parse_digital_model(text, path);
 }
 
 DigitalModel with_kinematics_uncorrected(const DigitalModel& model) {

@@ -45,24 +45,24 @@ File open_for_reading(const std::string& path, std::string& reason) {
 
 }  // namespace
 
-std::string unreadable_file_reason(const std::string& path) {
-  std::string reason;
-  open_for_reading(path, reason);
-  return reason;
-}
-
-std::string read_text_file(const std::string& path, std::string_view what) {
-  std::string reason;
+bool try_read_text_file(const std::string& path, std::string& text, std::string& reason) {
+  text.clear();
   File f = open_for_reading(path, reason);
-  const auto fail = [&](const std::string& why) {
-    throw InvalidInput(path + ": cannot read the " + std::string(what) + ": " + why);
-  };
-  if (!f) fail(reason);
-  std::string text;
+  if (!f) return false;
   char buf[1 << 16];
   std::size_t got = 0;
   while ((got = std::fread(buf, 1, sizeof buf, f.get())) > 0) text.append(buf, got);
-  if (std::ferror(f.get())) fail(os_reason(errno != 0 ? errno : EIO));
+  if (std::ferror(f.get())) {
+    reason = os_reason(errno != 0 ? errno : EIO);
+    return false;
+  }
+  return true;
+}
+
+std::string read_text_file(const std::string& path, std::string_view what) {
+  std::string text, reason;
+  if (!try_read_text_file(path, text, reason))
+    throw InvalidInput(path + ": cannot read the " + std::string(what) + ": " + reason);
   return text;
 }
 

@@ -647,9 +647,10 @@ Campaign parse_campaign(std::string_view json_text, const fs::path& campaign_pat
 }
 
 Campaign read_campaign_file(const fs::path& path) {
-  if (const std::string why = geometry::unreadable_file_reason(path.string()); !why.empty())
+  std::string text, why;
+  if (!geometry::try_read_text_file(path.string(), text, why))
     throw_error(path.string(), std::nullopt, {}, "", "cannot read the campaign file: " + why);
-  return parse_campaign(geometry::read_text_file(path.string(), "campaign file"), path);
+  return parse_campaign(text, path);
 }
 
 std::string campaign_json(const Campaign& c) {

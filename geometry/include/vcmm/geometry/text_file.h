@@ -14,8 +14,8 @@ namespace vcmm::geometry {
 /// "<path>: cannot read the <what>: <reason>" (e.g. what = "measurement file").
 std::string read_text_file(const std::string& path, std::string_view what);
 
-/// Why `path` cannot be read as a file ("" when it can be opened and is not a directory).
-/// For callers that throw their own exception type; read_text_file uses the same wording.
-std::string unreadable_file_reason(const std::string& path);
+/// The same without throwing, for callers that throw their own exception type: true and the
+/// content in `text`, or false and why in `reason` (read_text_file's wording). One open.
+bool try_read_text_file(const std::string& path, std::string& text, std::string& reason);
 
 }  // namespace vcmm::geometry

@@ -273,6 +273,8 @@ FirstOrderKernel kernel_of(const KinematicModel& model, const Prepared& pr,
   FirstOrderKernel k;
   for (int f = 0; f < axis_error_count; ++f) {
     k.degree = std::max(k.degree, pr.degree[f]);
+    if (is_rotation(static_cast<AxisError>(f)))
+      k.rotation_degree = std::max(k.rotation_degree, pr.degree[f]);
     for (int j = 0; j <= pr.degree[f]; ++j) k.mono[f][j] = pr.mono[f][j];
   }
   for (int a = 0; a < 3; ++a) {
@@ -682,7 +684,17 @@ void KinematicModel::draw(RandomSource& rng, KinematicErrors& out) const {
   if (k == 0) return;
   std::array<double, kMaxParameters> z;
   rng.fill_standard_normal({z.data(), static_cast<std::size_t>(k)});
-  // out[uncertain] += L z, column by column (contiguous in column-major L).
+  // out[uncertain] += L z, column by column (contiguous in column-major L). Each parameter
+  // gets its terms in the same order (j ascending) either way, so both loops give the same bits.
+  if (uncertain_.back() - uncertain_.front() == k - 1) {  // sorted, distinct: a contiguous run
+    double* __restrict p = out.parameters_.data() + uncertain_.front();
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const double zj = z[static_cast<std::size_t>(j)];
+      const double* __restrict l = cholesky_.col(j).data();
+      for (Eigen::Index i = j; i < k; ++i) p[i] += l[i] * zj;
+    }
+    return;
+  }
   for (Eigen::Index j = 0; j < k; ++j) {
     const double zj = z[static_cast<std::size_t>(j)];
     for (Eigen::Index i = j; i < k; ++i) {

@@ -36,7 +36,8 @@ struct FirstOrderKernel {
   double arm_mask[3][3] = {};
   double c0y = 0.0, b0z = 0.0, a0z = 0.0;
   double limit2 = 0.0;  // bound on u²
-  int degree = 0;       // highest degree of any function (the D of first_order_error)
+  int degree = 0;           // highest degree of any function (the D of first_order_error)
+  int rotation_degree = 0;  // highest degree of a rotation function (its DR)
 };
 
 /// The kernel of `errors` (a realisation of `model`) with stylus offset t. Throws
@@ -52,9 +53,15 @@ FirstOrderKernel first_order_kernel(const KinematicModel& model, const Kinematic
                                           const Eigen::Vector3d& t, const char* caller);
 
 /// The first-order tip error e = −v at the tip position p = (p0, p1, p2) (mm) for functions of
-/// degree ≤ D; kZ: also e2 (else e2 is left untouched). Returns 1 when a reading is out of
-/// range or non-finite (NaN fails every comparison; ±inf exceeds the bound), else 0.
-template <int D, bool kZ>
+/// degree ≤ D, the rotations' of degree ≤ DR ≤ D; kZ: also e2 (else e2 is left untouched).
+/// Returns 1 when a reading is out of range or non-finite (NaN fails every comparison; ±inf
+/// exceeds the bound), else 0.
+/// Any D, DR at least the functions' degrees give the same bits: the zero padding is +0 (the
+/// power-basis coefficients are sums started at +0, never −0), and a Horner step from a +0
+/// leading coefficient gives (±0)·u + m = m exactly, so the padded evaluation reaches each
+/// function's true leading coefficient with the value m itself.
+template <int D, bool kZ, int DR = D>
+  requires(0 <= DR && DR <= D)
 [[gnu::always_inline]] inline int first_order_error(const FirstOrderKernel& k, double p0,
                                                     double p1, double p2, double& e0, double& e1,
                                                     double& e2) {
@@ -72,9 +79,10 @@ template <int D, bool kZ>
     for (int c = 0; c < 6; ++c) {
       if (!kZ && c == 2) continue;  // E_Z of the axis: only in v2
       const double* m = k.mono[6 * a + c];
-      double acc = m[D];
+      constexpr int kDegree[6] = {D, D, D, DR, DR, DR};  // translations, rotations
+      double acc = m[kDegree[c]];
 #pragma GCC unroll 11
-      for (int j = D - 1; j >= 0; --j) acc = acc * u[a] + m[j];
+      for (int j = kDegree[c] - 1; j >= 0; --j) acc = acc * u[a] + m[j];
       f[c] = acc;
     }
     const double rx = k.t[0] + k.arm_mask[a][0] * q[0];

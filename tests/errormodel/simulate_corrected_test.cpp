@@ -282,6 +282,22 @@ TEST(SimulateCorrectedBadInput, RejectedWithTheFunctionsName) {
                std::invalid_argument);
 }
 
+/// simulate_corrected on `prepared` (the one-pass kernel) against the Measurement overload on
+/// `best` (three passes), first order: x, y, z and the xy form bit for bit, normals kept.
+void expect_prepared_is_bit_for_bit(const DigitalModel& model, const Measurement& best,
+                                    const PreparedMeasurement& prepared, const ErrorDraw& draw,
+                                    const Stages& stages) {
+  Measurement plain, fast;
+  simulate_corrected(best, model, draw, stages, Formula::first_order, plain);
+  simulate_corrected(prepared, model, draw, stages, Formula::first_order, fast);
+  EXPECT_EQ(max_abs_difference(plain.points_mm, fast.points_mm), 0.0);
+  EXPECT_EQ(fast.normals, best.normals);
+  std::vector<vcmm::geometry::Point2> xy_plain, xy_fast;
+  simulate_corrected(best, model, draw, stages, Formula::first_order, xy_plain);
+  simulate_corrected(prepared, model, draw, stages, Formula::first_order, xy_fast);
+  EXPECT_EQ(xy_plain, xy_fast);
+}
+
 TEST(PreparedMeasurement, DrawAndFusedTrialAreBitForBitTheMeasurementOverloads) {
   const DigitalModel model = read_digital_model_file(kExample);
   const Measurement best = best_estimate(model, 720, 61);
@@ -303,15 +319,7 @@ TEST(PreparedMeasurement, DrawAndFusedTrialAreBitForBitTheMeasurementOverloads) 
     EXPECT_EQ(a.kinematic.parameters(), b.kinematic.parameters());
     EXPECT_EQ(a.roughness_mm, b.roughness_mm);
     EXPECT_EQ(a.noise_mm, b.noise_mm);
-    Measurement plain, fast;
-    simulate_corrected(best, model, a, stages, Formula::first_order, plain);
-    simulate_corrected(prepared, model, a, stages, Formula::first_order, fast);
-    EXPECT_EQ(max_abs_difference(plain.points_mm, fast.points_mm), 0.0);
-    EXPECT_EQ(fast.normals, best.normals);
-    std::vector<vcmm::geometry::Point2> xy_plain, xy_fast;
-    simulate_corrected(best, model, a, stages, Formula::first_order, xy_plain);
-    simulate_corrected(prepared, model, a, stages, Formula::first_order, xy_fast);
-    EXPECT_EQ(xy_plain, xy_fast);
+    expect_prepared_is_bit_for_bit(model, best, prepared, a, stages);
   }
   // The exact formula goes through the composition, as for a Measurement.
   SeededRandomSource rng(63);
@@ -361,15 +369,8 @@ TEST(PreparedMeasurement, AnyRotationDegreeIsBitForBitTheMeasurementOverload) {
     const Measurement best = best_estimate(model, 360, 91);
     const PreparedMeasurement prepared(best, model);
     SeededRandomSource rng(92);
-    const ErrorDraw draw = draw_errors(model, best, rng);
-    std::vector<vcmm::geometry::Point2> plain, fast;
-    simulate_corrected(best, model, draw, Stages::all(), Formula::first_order, plain);
-    simulate_corrected(prepared, model, draw, Stages::all(), Formula::first_order, fast);
-    EXPECT_EQ(plain, fast);
-    Measurement plain3, fast3;
-    simulate_corrected(best, model, draw, Stages::all(), Formula::first_order, plain3);
-    simulate_corrected(prepared, model, draw, Stages::all(), Formula::first_order, fast3);
-    EXPECT_EQ(max_abs_difference(plain3.points_mm, fast3.points_mm), 0.0);
+    expect_prepared_is_bit_for_bit(model, best, prepared, draw_errors(model, best, rng),
+                                   Stages::all());
   }
 }
 

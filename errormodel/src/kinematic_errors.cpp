@@ -75,6 +75,8 @@
 #include <utility>
 #include <vector>
 
+#include "internal/first_order_kernel.h"
+
 namespace vcmm::errormodel {
 namespace {
 
@@ -194,9 +196,12 @@ Prepared prepare(const KinematicModel& model, const KinematicErrors& errors) {
   return pr;
 }
 
-[[noreturn]] void report_bad_point(const KinematicModel& model,
-                                   const Eigen::Ref<const Eigen::Matrix3Xd>& p,
-                                   const Eigen::Vector3d& stylus, const char* caller) {
+}  // namespace
+
+[[noreturn]] void internal::report_bad_tip_position(const KinematicModel& model,
+                                                    const Eigen::Ref<const Eigen::Matrix3Xd>& p,
+                                                    const Eigen::Vector3d& stylus,
+                                                    const char* caller) {
   for (Eigen::Index i = 0; i < p.cols(); ++i) {
     for (int k = 0; k < 3; ++k) {
       const double v = p(k, i);
@@ -218,25 +223,18 @@ Prepared prepare(const KinematicModel& model, const KinematicErrors& errors) {
   fail(std::string(caller) + ": invalid point (not located)");
 }
 
+namespace {
+
 // ---- first-order kernel ---------------------------------------------------------------------
 //
-// The first-order formula with the chain turned into data: the arm of axis k is
-//   r_k = t + Σ_j M_kj q_j a_j,   M_kj = 1 if axis j's travel lies between carriage k's
-// rotation centre and the tip (tool side: axes after k; workpiece side: all tool axes, the
-// workpiece axes before k, and k itself), so the loop body is branch-free and the same for
-// every chain. All functions are padded to a common degree D (a template parameter: Horner
-// fully unrolled) and the loop over points is vectorised by the compiler. Built three times
-// (target_clones: AVX-512, AVX2 and baseline x86-64 on GCC/ELF), the clone chosen at load
-// time; without FMA contraction (-ffp-contract=off for this file, errormodel/CMakeLists.txt)
-// all three round identically: results are bit-reproducible across CPUs.
-struct FirstOrderKernel {
-  double mono[axis_error_count][kMaxCoeffs] = {};  // power basis in u, zero-padded
-  double u_scale[3] = {}, u_offset[3] = {};
-  double t[3] = {};
-  double arm_mask[3][3] = {};
-  double c0y = 0.0, b0z = 0.0, a0z = 0.0;
-  double limit2 = 0.0;  // bound on u²
-};
+// The per-point formula is internal::first_order_error (internal/first_order_kernel.h), shared
+// with the fused trial's one-pass kernel. All functions are padded to a common degree D (a
+// template parameter: Horner fully unrolled) and the loop over points is vectorised by the
+// compiler. Built three times (target_clones: AVX-512, AVX2 and baseline x86-64 on GCC/ELF),
+// the clone chosen at load time; without FMA contraction (-ffp-contract=off for this file,
+// errormodel/CMakeLists.txt) all three round identically: results are bit-reproducible across
+// CPUs.
+using internal::FirstOrderKernel;
 
 template <int D>
 [[gnu::always_inline]] inline Eigen::Index first_order_points(const FirstOrderKernel& k,
@@ -245,46 +243,11 @@ template <int D>
                                                               Eigen::Index n) {
   Eigen::Index bad = 0;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double q[3] = {p[3 * i] - k.t[0], p[3 * i + 1] - k.t[1], p[3 * i + 2] - k.t[2]};
-    double u[3];
-    for (int a = 0; a < 3; ++a) u[a] = q[a] * k.u_scale[a] + k.u_offset[a];
-    // In range and finite (NaN fails every comparison; ±inf exceeds the bound).
-    bad += static_cast<Eigen::Index>(!(u[0] * u[0] <= k.limit2) | !(u[1] * u[1] <= k.limit2) |
-                                     !(u[2] * u[2] <= k.limit2));
-    double v0 = 0.0, v1 = 0.0, v2 = 0.0;
-    // Fully unrolled (constant trip counts) so that the loop over points vectorises.
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; ++a) {
-      double f[6];
-#pragma GCC unroll 6
-      for (int c = 0; c < 6; ++c) {
-        const double* m = k.mono[6 * a + c];
-        double acc = m[D];
-#pragma GCC unroll 11
-        for (int j = D - 1; j >= 0; --j) acc = acc * u[a] + m[j];
-        f[c] = acc;
-      }
-      const double rx = k.t[0] + k.arm_mask[a][0] * q[0];
-      const double ry = k.t[1] + k.arm_mask[a][1] * q[1];
-      const double rz = k.t[2] + k.arm_mask[a][2] * q[2];
-      v0 += f[0] + (f[4] * rz - f[5] * ry);
-      v1 += f[1] + (f[5] * rx - f[3] * rz);
-      v2 += f[2] + (f[3] * ry - f[4] * rx);
-    }
-    v0 += k.b0z * q[2] - k.c0y * q[1];
-    v1 -= k.a0z * q[2];
-    out[3 * i] = -v0;
-    out[3 * i + 1] = -v1;
-    out[3 * i + 2] = -v2;
+    bad += internal::first_order_error<D, true>(k, p[3 * i], p[3 * i + 1], p[3 * i + 2],
+                                                out[3 * i], out[3 * i + 1], out[3 * i + 2]);
   }
   return bad;
 }
-
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__ELF__) && !defined(__SANITIZE_ADDRESS__)
-#define VCMM_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define VCMM_SIMD_CLONES
-#endif
 
 // Returns the number of points with a reading out of range or non-finite.
 VCMM_SIMD_CLONES Eigen::Index first_order_dispatch(const FirstOrderKernel& k, const double* p,
@@ -305,13 +268,13 @@ VCMM_SIMD_CLONES Eigen::Index first_order_dispatch(const FirstOrderKernel& k, co
 }
 static_assert(max_legendre_degree == 10, "extend first_order_dispatch");
 
-void evaluate_first_order(const KinematicModel& model, const Prepared& pr,
-                          const Eigen::Ref<const Eigen::Matrix3Xd>& p, const Eigen::Vector3d& t,
-                          Eigen::Ref<Eigen::Matrix3Xd> out, const char* caller) {
+FirstOrderKernel kernel_of(const KinematicModel& model, const Prepared& pr,
+                           const Eigen::Vector3d& t) {
   FirstOrderKernel k;
-  int degree = 0;
   for (int f = 0; f < axis_error_count; ++f) {
-    degree = std::max(degree, pr.degree[f]);
+    k.degree = std::max(k.degree, pr.degree[f]);
+    if (is_rotation(static_cast<AxisError>(f)))
+      k.rotation_degree = std::max(k.rotation_degree, pr.degree[f]);
     for (int j = 0; j <= pr.degree[f]; ++j) k.mono[f][j] = pr.mono[f][j];
   }
   for (int a = 0; a < 3; ++a) {
@@ -337,7 +300,21 @@ void evaluate_first_order(const KinematicModel& model, const Prepared& pr,
   k.a0z = pr.squareness[2];
   const double u_limit = 1.0 + 2.0 * kRangeSlack;
   k.limit2 = u_limit * u_limit;
+  return k;
+}
 
+void check_stylus(const Eigen::Vector3d& t, const char* caller) {
+  if (!t.allFinite()) {
+    fail(std::string(caller) + ": stylus offset must be finite; got (" + fmt(t.x()) + ", " +
+         fmt(t.y()) + ", " + fmt(t.z()) + ")");
+  }
+}
+
+void evaluate_first_order(const KinematicModel& model, const Prepared& pr,
+                          const Eigen::Ref<const Eigen::Matrix3Xd>& p, const Eigen::Vector3d& t,
+                          Eigen::Ref<Eigen::Matrix3Xd> out, const char* caller) {
+  const FirstOrderKernel k = kernel_of(model, pr, t);
+  const int degree = k.degree;
   const Eigen::Index n = p.cols();
   // The kernel wants packed 3 × n storage (outer stride 3); copy otherwise (rare).
   const bool packed_in = p.outerStride() == 3 || n <= 1;
@@ -347,7 +324,7 @@ void evaluate_first_order(const KinematicModel& model, const Prepared& pr,
   if (!packed_out) out_copy.resize(3, n);
   const double* pin = packed_in ? p.data() : in_copy.data();
   double* pout = packed_out ? out.data() : out_copy.data();
-  if (first_order_dispatch(k, pin, pout, n, degree) != 0) report_bad_point(model, p, t, caller);
+  if (first_order_dispatch(k, pin, pout, n, degree) != 0) internal::report_bad_tip_position(model, p, t, caller);
   if (!packed_out) out = out_copy;
 }
 
@@ -355,10 +332,7 @@ void evaluate(const KinematicModel& model, const KinematicErrors& errors,
               const Eigen::Ref<const Eigen::Matrix3Xd>& p, const Eigen::Vector3d& t,
               Formula formula, Eigen::Ref<Eigen::Matrix3Xd> out, const char* caller) {
   check_errors_match(model, errors, caller);
-  if (!t.allFinite()) {
-    fail(std::string(caller) + ": stylus offset must be finite; got (" + fmt(t.x()) + ", " +
-         fmt(t.y()) + ", " + fmt(t.z()) + ")");
-  }
+  check_stylus(t, caller);
   if (out.cols() != p.cols()) {
     fail(std::string(caller) + ": output has " + std::to_string(out.cols()) +
          " columns for " + std::to_string(p.cols()) + " points");
@@ -391,7 +365,7 @@ void evaluate(const KinematicModel& model, const KinematicErrors& errors,
       u[k] = q[k] * pr.u_scale[k] + pr.u_offset[k];
       // Finite and in range: NaN fails the comparison, inf exceeds the limit.
       if (!(u[k].abs().maxCoeff() <= u_limit) || !((u[k] * 0.0).sum() == 0.0)) {
-        report_bad_point(model, p, t, caller);
+        internal::report_bad_tip_position(model, p, t, caller);
       }
     }
     for (int f = 0; f < axis_error_count; ++f) {
@@ -428,6 +402,15 @@ void evaluate(const KinematicModel& model, const KinematicErrors& errors,
 }
 
 }  // namespace
+
+internal::FirstOrderKernel internal::first_order_kernel(const KinematicModel& model,
+                                                        const KinematicErrors& errors,
+                                                        const Eigen::Vector3d& t,
+                                                        const char* caller) {
+  check_errors_match(model, errors, caller);
+  check_stylus(t, caller);
+  return kernel_of(model, prepare(model, errors), t);
+}
 
 // ---- names ---------------------------------------------------------------------------------
 
@@ -701,7 +684,17 @@ void KinematicModel::draw(RandomSource& rng, KinematicErrors& out) const {
   if (k == 0) return;
   std::array<double, kMaxParameters> z;
   rng.fill_standard_normal({z.data(), static_cast<std::size_t>(k)});
-  // out[uncertain] += L z, column by column (contiguous in column-major L).
+  // out[uncertain] += L z, column by column (contiguous in column-major L). Each parameter
+  // gets its terms in the same order (j ascending) either way, so both loops give the same bits.
+  if (uncertain_.back() - uncertain_.front() == k - 1) {  // sorted, distinct: a contiguous run
+    double* __restrict p = out.parameters_.data() + uncertain_.front();
+    for (Eigen::Index j = 0; j < k; ++j) {
+      const double zj = z[static_cast<std::size_t>(j)];
+      const double* __restrict l = cholesky_.col(j).data();
+      for (Eigen::Index i = j; i < k; ++i) p[i] += l[i] * zj;
+    }
+    return;
+  }
   for (Eigen::Index j = 0; j < k; ++j) {
     const double zj = z[static_cast<std::size_t>(j)];
     for (Eigen::Index i = j; i < k; ++i) {

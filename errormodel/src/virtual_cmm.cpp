@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "internal/first_order_kernel.h"
+#include "internal/fused_trial_kernel.h"
 #include "vcmm/errormodel/errors.h"
 
 namespace vcmm::errormodel {
@@ -429,32 +431,50 @@ bool prepared_trial(const PreparedMeasurement& pm, const DigitalModel& model,
   const Zeros& zeros = thread_zeros(n);
   const double* rough = roughness ? draw.roughness_mm.data() : zeros.scalar.data();
   if (kinematic) {
-    const double* __restrict px = PreparedAccess::column(pm, 0);
-    const double* __restrict py = PreparedAccess::column(pm, 1);
-    const double* __restrict pz = PreparedAccess::column(pm, 2);
-    const double* __restrict nx = PreparedAccess::column(pm, 3);
-    const double* __restrict ny = PreparedAccess::column(pm, 4);
-    const double* __restrict nz = PreparedAccess::column(pm, 5);
-    const double r00 = r(0, 0), r01 = r(0, 1), r10 = r(1, 0), r11 = r(1, 1), r22 = r(2, 2);
-    const Eigen::Vector3d& location = m.placement.location_mm;
-    const double lx = location.x(), ly = location.y(), lz = location.z();
-    double* __restrict w = scratch.w.data();
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double t = rough[i];
-      const double qx = (px[i] + t * nx[i]) * scale;
-      const double qy = (py[i] + t * ny[i]) * scale;
-      const double qz = (pz[i] + t * nz[i]) * scale;
-      w[3 * i] = r00 * qx + r01 * qy + lx;
-      w[3 * i + 1] = r10 * qx + r11 * qy + ly;
-      w[3 * i + 2] = r22 * qz + lz;
+    // One pass over the points (internal/fused_trial_kernel.h), the probe shifts first.
+    const internal::FirstOrderKernel kernel = internal::first_order_kernel(
+        model.kinematics, kinematic_difference(model.kinematics, draw.kinematic, caller),
+        m.stylus_offset_mm, caller);
+    const int order = pm.probe_order();
+    std::array<const double*, max_probe_harmonic_order + 1> re{}, im{};
+    for (int k = 1; k <= order; ++k) {
+      re[static_cast<std::size_t>(k)] = PreparedAccess::harmonic(pm, 2 * (k - 1));
+      im[static_cast<std::size_t>(k)] = PreparedAccess::harmonic(pm, 2 * (k - 1) + 1);
     }
-    tip_errors(model.kinematics, kinematic_difference(model.kinematics, draw.kinematic, caller),
-               scratch.w, m.stylus_offset_mm, Formula::first_order, scratch.e);
+    internal::probe_shift_points(n, order, shift.tip_radius_error_mm, shift.cos_mm.data(),
+                                 shift.sin_mm.data(), re.data(), im.data(),
+                                 scratch.shift.data());
+    internal::FusedTrialInput in;
+    in.n = n;
+    in.px = PreparedAccess::column(pm, 0);
+    in.py = PreparedAccess::column(pm, 1);
+    in.pz = PreparedAccess::column(pm, 2);
+    in.nx = PreparedAccess::column(pm, 3);
+    in.ny = PreparedAccess::column(pm, 4);
+    in.nz = PreparedAccess::column(pm, 5);
+    in.roughness = rough;
+    in.shift = scratch.shift.data();
+    in.noise = noise ? draw.noise_mm.data() : zeros.xyz.data();
+    in.scale = scale;
+    in.inverse_scale = inverse_scale;
+    in.rotation = r;
+    in.location = m.placement.location_mm;
+    if (internal::fused_trial_points(in, kernel, kXyz, out) != 0) {
+      // A machine position out of range: recompute them and let the kinematics name it.
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const Eigen::Vector3d q =
+            (m.points_mm.col(i) + rough[i] * m.normals.col(i)) * scale;
+        scratch.w.col(i) = r * q + m.placement.location_mm;
+      }
+      internal::report_bad_tip_position(model.kinematics, scratch.w, m.stylus_offset_mm,
+                                        caller);
+    }
+    return true;
   }
   prepared_points_dispatch<kXyz>(
       std::make_integer_sequence<int, max_probe_harmonic_order + 1>{}, pm.probe_order(), pm,
-      rough, kinematic ? scratch.e.data() : zeros.xyz.data(),
-      noise ? draw.noise_mm.data() : zeros.xyz.data(), shift, scale, inverse_scale, r, out);
+      rough, zeros.xyz.data(), noise ? draw.noise_mm.data() : zeros.xyz.data(), shift, scale,
+      inverse_scale, r, out);
   return true;
 }
 

@@ -2,6 +2,8 @@
 // exact vs first order, draw statistics, JSON errors, bad input.
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
+
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -507,6 +509,45 @@ TEST(Draw, UncorrectedModelHasZeroMeanAndTheWholeErrorAsVariance) {
   EXPECT_NEAR(sum2 / 4000.0 / 1e-14, 1.0, 5.0 * std::sqrt(2.0 / 4000.0));
   // Correction with the uncorrected model removes nothing.
   EXPECT_TRUE(u.nominal().parameters().isZero(0.0));
+}
+
+// draw() = mean + L z, L the Cholesky factor of the covariance of the parameters with
+// non-zero variance, z the source's next normals — checked for both of its loops: the
+// uncertain parameters scattered (uncertain_model) and all of them one run (every parameter
+// given a variance, as the example model).
+TEST(Draw, IsTheMeanPlusTheCholeskyFactorTimesTheNormals) {
+  KinematicModel all = uncertain_model();
+  Eigen::MatrixXd cov = all.covariance();
+  for (Eigen::Index i = 0; i < cov.rows(); ++i)
+    if (cov(i, i) == 0.0) cov(i, i) = 1e-14;
+  all.set_covariance(cov);
+  for (const KinematicModel& m : {uncertain_model(), all}) {
+    std::vector<Eigen::Index> uncertain;
+    for (Eigen::Index i = 0; i < m.parameter_count(); ++i)
+      if (m.covariance()(i, i) > 0.0) uncertain.push_back(i);
+    const auto k = static_cast<Eigen::Index>(uncertain.size());
+    SCOPED_TRACE(std::to_string(k) + " of " + std::to_string(m.parameter_count()) +
+                 " parameters uncertain");
+    Eigen::MatrixXd sub(k, k);
+    for (Eigen::Index a = 0; a < k; ++a)
+      for (Eigen::Index b = 0; b < k; ++b)
+        sub(a, b) = m.covariance()(uncertain[static_cast<std::size_t>(a)],
+                                   uncertain[static_cast<std::size_t>(b)]);
+    const Eigen::MatrixXd l = sub.llt().matrixL();
+    SeededRandomSource r1(21), r2(21);
+    std::vector<double> z(static_cast<std::size_t>(k));
+    r2.fill_standard_normal(z);
+    Eigen::VectorXd want = m.mean();
+    for (Eigen::Index a = 0; a < k; ++a)
+      for (Eigen::Index b = 0; b <= a; ++b)
+        want[uncertain[static_cast<std::size_t>(a)]] += l(a, b) * z[static_cast<std::size_t>(b)];
+    const Eigen::VectorXd got = m.draw(r1).parameters();
+    for (Eigen::Index i = 0; i < m.parameter_count(); ++i) {  // rounding only
+      const double tolerance =
+          1e-12 * (std::sqrt(m.covariance()(i, i)) + std::abs(want[i]));
+      EXPECT_NEAR(got[i], want[i], tolerance) << i;
+    }
+  }
 }
 
 TEST(Draw, IntoReusedStorageGivesTheSameStream) {

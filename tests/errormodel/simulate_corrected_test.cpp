@@ -282,6 +282,22 @@ TEST(SimulateCorrectedBadInput, RejectedWithTheFunctionsName) {
                std::invalid_argument);
 }
 
+/// simulate_corrected on `prepared` (the one-pass kernel) against the Measurement overload on
+/// `best` (three passes), first order: x, y, z and the xy form bit for bit, normals kept.
+void expect_prepared_is_bit_for_bit(const DigitalModel& model, const Measurement& best,
+                                    const PreparedMeasurement& prepared, const ErrorDraw& draw,
+                                    const Stages& stages) {
+  Measurement plain, fast;
+  simulate_corrected(best, model, draw, stages, Formula::first_order, plain);
+  simulate_corrected(prepared, model, draw, stages, Formula::first_order, fast);
+  EXPECT_EQ(max_abs_difference(plain.points_mm, fast.points_mm), 0.0);
+  EXPECT_EQ(fast.normals, best.normals);
+  std::vector<vcmm::geometry::Point2> xy_plain, xy_fast;
+  simulate_corrected(best, model, draw, stages, Formula::first_order, xy_plain);
+  simulate_corrected(prepared, model, draw, stages, Formula::first_order, xy_fast);
+  EXPECT_EQ(xy_plain, xy_fast);
+}
+
 TEST(PreparedMeasurement, DrawAndFusedTrialAreBitForBitTheMeasurementOverloads) {
   const DigitalModel model = read_digital_model_file(kExample);
   const Measurement best = best_estimate(model, 720, 61);
@@ -303,15 +319,7 @@ TEST(PreparedMeasurement, DrawAndFusedTrialAreBitForBitTheMeasurementOverloads) 
     EXPECT_EQ(a.kinematic.parameters(), b.kinematic.parameters());
     EXPECT_EQ(a.roughness_mm, b.roughness_mm);
     EXPECT_EQ(a.noise_mm, b.noise_mm);
-    Measurement plain, fast;
-    simulate_corrected(best, model, a, stages, Formula::first_order, plain);
-    simulate_corrected(prepared, model, a, stages, Formula::first_order, fast);
-    EXPECT_EQ(max_abs_difference(plain.points_mm, fast.points_mm), 0.0);
-    EXPECT_EQ(fast.normals, best.normals);
-    std::vector<vcmm::geometry::Point2> xy_plain, xy_fast;
-    simulate_corrected(best, model, a, stages, Formula::first_order, xy_plain);
-    simulate_corrected(prepared, model, a, stages, Formula::first_order, xy_fast);
-    EXPECT_EQ(xy_plain, xy_fast);
+    expect_prepared_is_bit_for_bit(model, best, prepared, a, stages);
   }
   // The exact formula goes through the composition, as for a Measurement.
   SeededRandomSource rng(63);
@@ -337,6 +345,54 @@ TEST(PreparedMeasurement, DrawsOfAHigherProbeOrderTakeTheMeasurementPath) {
   simulate_corrected(best, model, draw, Stages::all(), Formula::first_order, a);
   simulate_corrected(prepared, model, draw, Stages::all(), Formula::first_order, b);
   EXPECT_EQ(a, b);
+}
+
+// The one-pass kernel has an instance per (degree, rotation degree) pair it can shorten: the
+// example model's rotations are one degree below its translations; here they are of the same
+// degree and of a higher one (the longest padding) — each bit for bit the Measurement overload.
+TEST(PreparedMeasurement, AnyRotationDegreeIsBitForBitTheMeasurementOverload) {
+  DigitalModel model = read_digital_model_file(kExample);
+  for (const int rotation_coefficients : {4, 6}) {
+    SCOPED_TRACE(std::to_string(rotation_coefficients) + " rotation coefficients");
+    std::array<ErrorFunctionEstimate, axis_error_count> functions;
+    for (int f = 0; f < axis_error_count; ++f) {
+      const bool rotation = is_rotation(static_cast<AxisError>(f));
+      const std::size_t count = rotation ? static_cast<std::size_t>(rotation_coefficients) : 4;
+      const double unit = rotation ? 0.2e-6 : 0.1e-3;  // 0.2 µrad, 0.1 µm
+      functions[static_cast<std::size_t>(f)].coefficients.assign(count, 0.5 * unit);
+      functions[static_cast<std::size_t>(f)].standard_uncertainties.assign(count, unit);
+    }
+    std::array<EstimatedValue, squareness_count> squareness{};
+    squareness[0] = {0.5e-6, 0.3e-6};
+    model.kinematics =
+        KinematicModel(KinematicChain::moving_bridge(), kRanges, functions, squareness);
+    const Measurement best = best_estimate(model, 360, 91);
+    const PreparedMeasurement prepared(best, model);
+    SeededRandomSource rng(92);
+    expect_prepared_is_bit_for_bit(model, best, prepared, draw_errors(model, best, rng),
+                                   Stages::all());
+  }
+}
+
+TEST(PreparedMeasurementBadInput, AMachinePositionOutOfRangeIsNamed) {
+  // The ring centred 40 mm from the end of X's travel: points beyond it need the X axis at
+  // up to ~1245 mm of a 0 … 1200 mm range.
+  const DigitalModel model = read_digital_model_file(kExample);
+  Measurement m = ring(360);
+  m.placement.location_mm = {1160.0, 500.0, 250.0};
+  const PreparedMeasurement prepared(m, model);
+  SeededRandomSource rng(93);
+  ErrorDraw draw;
+  draw_errors(model, prepared, rng, Stages::all(), draw);
+  std::vector<vcmm::geometry::Point2> xy;
+  try {
+    simulate_corrected(prepared, model, draw, Stages::all(), Formula::first_order, xy);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("simulate_corrected: point "), std::string::npos) << what;
+    EXPECT_NE(what.find("needs the X axis"), std::string::npos) << what;
+  }
 }
 
 TEST(PreparedMeasurementBadInput, ValidatesOnceWithItsName) {

@@ -477,13 +477,73 @@ double RandomStream::standard_normal() {
   return normal_slow_path(word);
 }
 
-// The loop below runs at ~2.1 ns a value on the 2.6 GHz AVX-512 Xeon of docs/performance.md,
-// of which ~0.75 ns is Philox. An AVX-512 variant testing 8 words at once with two gathers
-// from the table was slower there (2.75 ns: gathers are slow on that CPU), so it was dropped.
+namespace {
+
+#if VCMM_PHILOX_X86
+// The core test of 8 words at once (AVX-512F + DQ): the table entries of the 8 words by two
+// gathers, a = w >> 11, accepted when a < A_i; the candidates fl(a·x_i·2⁻⁵³) (times sigma:
+// kScaled) — the same operations as the scalar loop (a < 2⁵³ converts exactly), so the same
+// bits. Stores and consumes 8 values at a time while all 8 are accepted (≈ 88 % of groups); at
+// a group with a rejection it stores the accepted words before it and stops there, for the
+// scalar loop and the slow path to take over. Returns the number of words consumed.
+template <bool kScaled>
+__attribute__((target("avx512f,avx512dq"))) std::size_t accepted_prefix_avx512(
+    const std::uint64_t* w, std::size_t m, const internal::FastEntry* table, double sigma,
+    double* out) {
+  static_assert(sizeof(internal::FastEntry) == 2 * sizeof(double), "FastEntry: 16 bytes");
+  const auto* x_base = reinterpret_cast<const double*>(table);
+  const auto* a_base = reinterpret_cast<const long long*>(table) + 1;
+  constexpr __mmask8 all = 0xff;  // maskz forms: see the Philox kernels
+  const __m512i low9 = _mm512_set1_epi64(0x1ff);  // index in doubles: 2 (sign, layer)
+  const __m512d s = _mm512_set1_pd(sigma);
+  std::size_t k = 0;
+  for (; k + 8 <= m; k += 8) {
+    const __m512i word = _mm512_loadu_si512(w + k);
+    const __m512i index = _mm512_maskz_slli_epi64(all, _mm512_and_si512(word, low9), 1);
+    const __m512d x = _mm512_mask_i64gather_pd(_mm512_setzero_pd(), all, index, x_base, 8);
+    const __m512i accept =
+        _mm512_mask_i64gather_epi64(_mm512_setzero_si512(), all, index, a_base, 8);
+    const __m512i a = _mm512_maskz_srli_epi64(all, word, 11);
+    const __mmask8 ok = _mm512_cmplt_epu64_mask(a, accept);
+    __m512d z = _mm512_mul_pd(_mm512_cvtepu64_pd(a), x);
+    if constexpr (kScaled) z = _mm512_mul_pd(z, s);
+    if (ok == 0xff) {
+      _mm512_storeu_pd(out + k, z);
+      continue;
+    }
+    const auto head = static_cast<unsigned>(std::countr_one(static_cast<unsigned>(ok)));
+    _mm512_mask_storeu_pd(out + k, static_cast<__mmask8>((1u << head) - 1u), z);
+    return k + head;
+  }
+  return k;
+}
+
+template <bool kScaled>
+using AcceptedPrefix = std::size_t (*)(const std::uint64_t*, std::size_t,
+                                       const internal::FastEntry*, double, double*);
+
+template <bool kScaled>
+AcceptedPrefix<kScaled> select_accepted_prefix() {
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq"))
+    return accepted_prefix_avx512<kScaled>;
+  return nullptr;
+}
+#endif
+
+}  // namespace
+
+// The loop below ran at ~2.1 ns a value on the 2.6 GHz AVX-512 Xeon of docs/performance.md, of
+// which ~0.75 ns is Philox; there the 8-word AVX-512 test above (two gathers) was slower (2.75
+// ns: gathers were slow on that CPU). On the Sapphire Rapids of issue 14's measurements it is
+// faster (docs/performance.md, "Issue 14 item 1"), so it runs first where the CPU has it.
 // kScaled: each value times sigma as a separate rounding (the bits of scaling afterwards).
 template <bool kScaled>
 void RandomStream::fill_normal_values(std::span<double> out, double sigma) {
   const internal::FastEntry* table = internal::scaled_tables().entry.data();
+#if VCMM_PHILOX_X86
+  static const AcceptedPrefix<kScaled> vector_prefix = select_accepted_prefix<kScaled>();
+#endif
   double* o = out.data();
   const std::size_t n = out.size();
   std::size_t i = 0;
@@ -492,6 +552,9 @@ void RandomStream::fill_normal_values(std::span<double> out, double sigma) {
     const std::size_t m = std::min(end_ - position_, n - i);
     const std::uint64_t* w = words_.data() + position_;
     std::size_t k = 0;
+#if VCMM_PHILOX_X86
+    if (vector_prefix) k = vector_prefix(w, m, table, sigma, o + i);
+#endif
     for (; k < m; ++k) {
       const internal::FastEntry& e = table[w[k] & 0x1ffu];
       const std::uint64_t a = w[k] >> 11;

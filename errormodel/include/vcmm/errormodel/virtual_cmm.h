@@ -204,8 +204,10 @@ void simulate_corrected(const Measurement& m, const DigitalModel& model, const E
                         std::vector<geometry::Point2>& out_xy);
 /// The same two forms for a prepared measurement (the Monte Carlo loop): bit for bit the
 /// results of the overloads above for prepared.measurement(), without validating its points
-/// again (the draw is still checked: sizes, probe order; O(1)). ~30 µs at 3600 points with
-/// all stages (docs/performance.md), of which ~20 µs the one kinematic evaluation.
+/// again (the draw is still checked: sizes, probe order; O(1)). With the kinematic stage on,
+/// one SIMD pass over the points computes the machine positions, the kinematic error and the
+/// corrected points in registers (docs/errormodel.md, "The fused trial"): ~23 µs at 3600
+/// points with all stages (docs/performance.md).
 void simulate_corrected(const PreparedMeasurement& prepared, const DigitalModel& model,
                         const ErrorDraw& draw, const Stages& stages, Formula formula,
                         Measurement& out);

@@ -216,6 +216,7 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
   radius_ = g.ls.radius;
   cos_ = g.cos;
   sin_ = g.sin;
+  if (n_ >= 8) directions_.emplace(cos_, sin_);  // the MZ fast path's (geometry::PolarProfile)
 
   // The estimate's filtered deviations, exactly as the exact trial filters (about c₀, R₀), and
   // about the filtered profile's own LS circle (the LS reference).
@@ -534,14 +535,18 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
     y.roundness_mm = d.maxCoeff() - d.minCoeff();
     return y;
   }
-  for (std::size_t j = 0; j < n; ++j) {
+  for (std::size_t j = 0; j < n; ++j)
     synthesized_[j] += kappa * m.filtered_[j];  // the deviation about (c₀, R₀)
+  if (m.options_.reference == ReferenceCircle::minimum_zone && m.directions_) {
+    const geometry::PolarProfile profile{m.radius_, synthesized_, &*m.directions_};
+    y.roundness_mm = geometry::minimum_zone_ront_from_extremes(profile, extremes_);
+    return y;
+  }
+  for (std::size_t j = 0; j < n; ++j) {
     const double r = m.radius_ + synthesized_[j];
     points_[j] = {r * m.cos_[j], r * m.sin_[j]};
   }
-  y.roundness_mm = m.options_.reference == ReferenceCircle::minimum_zone
-                       ? geometry::minimum_zone_ront_from_extremes(points_, synthesized_, minimum_zone_)
-                       : ront_about(points_, m.options_.reference);
+  y.roundness_mm = ront_about(points_, m.options_.reference);
   return y;
 }
 

@@ -49,8 +49,8 @@
 #include "vcmm/errormodel/measurement.h"
 #include "vcmm/errormodel/virtual_cmm.h"
 #include "vcmm/geometry/equiangular_transform.h"
-#include "vcmm/geometry/minimum_zone_from_extremes.h"
 #include "vcmm/geometry/point.h"
+#include "vcmm/geometry/polar_profile.h"
 #include "vcmm/uncertainty/monte_carlo.h"
 #include "vcmm/uncertainty/random_stream.h"
 #include "vcmm/validation/ring_evaluation.h"
@@ -143,6 +143,7 @@ class SpectralRingModel {
   double radius_ = 0.0;           ///< R₀
   double estimated_scale_ = 1.0;  ///< ŝ
   std::vector<double> cos_, sin_;        ///< estimate directions about c₀
+  std::optional<geometry::PolarDirections> directions_;  ///< the same, checked (n ≥ 8)
   std::vector<double> filtered_;         ///< f̂_j about (c₀, R₀)
   std::vector<double> filtered_ls_;      ///< f̂ about the filtered estimate's LS circle
   std::vector<Parameter> parameters_;
@@ -174,7 +175,7 @@ class SpectralRingTrial {
   Eigen::VectorXd theta_, harmonics_;
   std::vector<double> white_, a_, b_, synthesized_;
   std::vector<geometry::Point2> points_;
-  geometry::MinimumZoneScratch minimum_zone_;
+  geometry::ExtremesScratch extremes_;
   geometry::EquiangularTransform transform_;
 };
 

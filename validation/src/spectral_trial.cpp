@@ -14,6 +14,7 @@
 #include "internal/stream_random_source.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
+#include "vcmm/geometry/maximum_inscribed_from_extremes.h"
 #include "vcmm/geometry/minimum_zone_from_extremes.h"
 
 namespace vcmm::validation {
@@ -537,9 +538,13 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
   }
   for (std::size_t j = 0; j < n; ++j)
     synthesized_[j] += kappa * m.filtered_[j];  // the deviation about (c₀, R₀)
-  if (m.options_.reference == ReferenceCircle::minimum_zone && m.directions_) {
+  if (m.directions_ && (m.options_.reference == ReferenceCircle::minimum_zone ||
+                        m.options_.reference == ReferenceCircle::maximum_inscribed)) {
     const geometry::PolarProfile profile{m.radius_, synthesized_, &*m.directions_};
-    y.roundness_mm = geometry::minimum_zone_ront_from_extremes(profile, extremes_);
+    y.roundness_mm =
+        m.options_.reference == ReferenceCircle::minimum_zone
+            ? geometry::minimum_zone_ront_from_extremes(profile, extremes_)
+            : geometry::maximum_inscribed_ront_from_extremes(profile, extremes_);
     return y;
   }
   for (std::size_t j = 0; j < n; ++j) {

@@ -157,6 +157,13 @@ void add_deviation_extremes(const PolarProfile& p, ExtremesScratch& s, double to
   }
 }
 
+std::size_t index_of_highest(const PolarProfile& p, const ExtremesScratch& s) {
+  const auto best = std::max_element(s.peak_hi.begin(), s.peak_hi.end());
+  std::size_t j = static_cast<std::size_t>(best - s.peak_hi.begin()) * kRangeBlock;
+  while (p.deviation[j] != *best) ++j;
+  return j;
+}
+
 // The window. For point j, r_j = fl(R₀ + d_j), p_j = (fl(r_j c_j), fl(r_j s_j)), D̃_j as in
 // polar_squared_distance; |u_j|² ∈ [q_lo, q_hi] (PolarDirections, each within 2u). Then
 //   √D̃_j ≤ (|p_j| + |c|)(1 + 3u),  |p_j| ≤ |R₀ + d_j| √q_hi (1 + 4u),

@@ -43,6 +43,10 @@ inline ValueRange block_range(const PolarProfile& p, const ExtremesScratch& s, s
 void add_deviation_extremes(const PolarProfile& p, ExtremesScratch& s, double top, double bottom,
                             std::size_t neighbours);
 
+/// The index of the highest deviation (the first one holding it; deviation_ranges must have
+/// run).
+std::size_t index_of_highest(const PolarProfile& p, const ExtremesScratch& s);
+
 /// D̃_j = fl(dx² + dy²), (dx, dy) = fl(polar_point(p, j) − c): the squared distance every
 /// pass below uses (bit for bit).
 inline double polar_squared_distance(const PolarProfile& p, std::size_t j, Point2 c) {

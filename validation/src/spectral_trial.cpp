@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "internal/spectral_kernels.h"
 #include "internal/stream_random_source.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
@@ -498,7 +499,11 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
   std::fill(a_.begin(), a_.end(), 0.0);
   std::fill(b_.begin(), b_.end(), 0.0);
   if (m.response_.rows() > 0) {
-    harmonics_.noalias() = m.response_ * theta_;
+    harmonics_.resize(m.response_.rows());
+    internal::column_major_product(m.response_.data(),
+                                   static_cast<std::size_t>(m.response_.rows()),
+                                   static_cast<std::size_t>(m.response_.cols()), theta_.data(),
+                                   harmonics_.data());  // = response_ · θ, bit for bit
     for (std::size_t k = 2; k <= m.systematic_order_; ++k) {
       a_[k] = harmonics_[static_cast<Eigen::Index>(2 * (k - 2))];
       b_[k] = harmonics_[static_cast<Eigen::Index>(2 * (k - 2) + 1)];
@@ -527,13 +532,9 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
   }
   const std::size_t n = m.n_;
   if (m.options_.reference == ReferenceCircle::least_squares) {
-    // Eigen's packet max/min (vectorised, unlike a scalar std::max reduction), evaluated
-    // lazily: two passes, nothing stored.
-    const auto d = kappa * Eigen::Map<const Eigen::ArrayXd>(m.filtered_ls_.data(),
-                                                           static_cast<Eigen::Index>(n)) +
-                   Eigen::Map<const Eigen::ArrayXd>(synthesized_.data(),
-                                                    static_cast<Eigen::Index>(n));
-    y.roundness_mm = d.maxCoeff() - d.minCoeff();
+    // One vectorised pass, nothing stored.
+    y.roundness_mm =
+        internal::scaled_sum_peak_to_valley(kappa, m.filtered_ls_.data(), synthesized_.data(), n);
     return y;
   }
   for (std::size_t j = 0; j < n; ++j)

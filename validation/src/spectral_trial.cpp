@@ -281,9 +281,19 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
   Eigen::MatrixXd a(half + 1, count), b(half + 1, count);  // per unit of θ
   std::vector<double> radial(n_), ca(half + 1), cb(half + 1);
   std::vector<geometry::Point2> moved;
-  // Displacements per standard uncertainty (for the second-order bound) and Σ_i 5 h_i |∇Δp|.
-  Eigen::MatrixXd move_x(static_cast<Eigen::Index>(count), static_cast<Eigen::Index>(n_));
-  Eigen::MatrixXd move_y(static_cast<Eigen::Index>(count), static_cast<Eigen::Index>(n_));
+  // Displacements per standard uncertainty (for the second-order bound; point j's row, one
+  // column per parameter: each parameter's displacements are written contiguously) and
+  // Σ_i 5 h_i |∇Δp| (the largest change of a displacement between neighbours per unit of
+  // their distance: squares compared, one square root per parameter).
+  Eigen::MatrixXd move_x(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(count));
+  Eigen::MatrixXd move_y(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(count));
+  std::vector<double> inverse_distance2(n_, 0.0);  // 1/|p_{j+1} − p_j|² (0: coincident)
+  for (std::size_t j = 0; j < n_; ++j) {
+    const std::size_t next = (j + 1) % n_;
+    const double ux = g.profile[next].x - g.profile[j].x, uy = g.profile[next].y - g.profile[j].y;
+    const double d2 = ux * ux + uy * uy;
+    if (d2 > 0.0) inverse_distance2[j] = 1.0 / d2;
+  }
   double gradient_5sd = 0.0;
   for (std::size_t i = 0; i < count; ++i) {
     const Parameter& p = parameters_[i];
@@ -304,20 +314,23 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
     }
     em::simulate_corrected(*prepared_, model, d, em::Stages::only(source),
                            em::Formula::first_order, moved);
-    double gradient = 0.0;
+    double* mx = move_x.col(static_cast<Eigen::Index>(i)).data();
+    double* my = move_y.col(static_cast<Eigen::Index>(i)).data();
     for (std::size_t j = 0; j < n_; ++j) {
       const double dx = moved[j].x - g.profile[j].x, dy = moved[j].y - g.profile[j].y;
       radial[j] = (dx * cos_[j] + dy * sin_[j]) / h;
-      move_x(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = dx;  // at 1 sd
-      move_y(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = dy;
-      const std::size_t next = (j + 1) % n_;
-      const double ex = moved[next].x - g.profile[next].x - dx;
-      const double ey = moved[next].y - g.profile[next].y - dy;
-      const double dist = std::hypot(g.profile[next].x - g.profile[j].x,
-                                     g.profile[next].y - g.profile[j].y);
-      if (dist > 0.0) gradient = std::max(gradient, std::hypot(ex, ey) / dist);
+      mx[j] = dx;  // at 1 sd
+      my[j] = dy;
     }
-    if (p.kind == Parameter::Kind::kinematic) gradient_5sd += kSigmas * gradient;
+    if (p.kind == Parameter::Kind::kinematic) {
+      double gradient2 = 0.0;
+      for (std::size_t j = 0; j < n_; ++j) {
+        const std::size_t next = j + 1 == n_ ? 0 : j + 1;
+        const double ex = mx[next] - mx[j], ey = my[next] - my[j];
+        gradient2 = std::max(gradient2, (ex * ex + ey * ey) * inverse_distance2[j]);
+      }
+      gradient_5sd += kSigmas * std::sqrt(gradient2);
+    }
     transform.coefficients(radial, ca, cb);
     for (std::size_t k = 0; k <= half; ++k) {
       a(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)) = ca[k];
@@ -419,8 +432,8 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
         else if (i == k)
           cov(r, c) = 1.0;  // a probe term in units of its own u
       }
-    const Eigen::ArrayXd var = (move_x.cwiseProduct(cov * move_x)).colwise().sum().array() +
-                               (move_y.cwiseProduct(cov * move_y)).colwise().sum().array();
+    const Eigen::ArrayXd var = (move_x.cwiseProduct(move_x * cov)).rowwise().sum().array() +
+                               (move_y.cwiseProduct(move_y * cov)).rowwise().sum().array();
     displacement_5sd = kSigmas * std::sqrt(var.maxCoeff());
   }
   const double white_5sd = kSigmas * std::sqrt(2.0 * sigma_noise * sigma_noise +

@@ -92,6 +92,12 @@ void column_major_product(const double* a, std::size_t rows, std::size_t cols, c
   // Eigen 3.4, GeneralMatrixVector.h: block_cols = cols < 128 ? cols
   //   : (lhsStride * sizeof(double) < 32000 ? 16 : 4).
   const std::size_t block = cols < 128 ? cols : (rows * sizeof(double) < 32000 ? 16 : 4);
+  if (rows == 1) {  // Eigen: a dot product of a strided row, summed in order (scalar)
+    double c = cols > 0 ? a[0] * x[0] : 0.0;
+    for (std::size_t j = 1; j < cols; ++j) c = c + a[j] * x[j];
+    y[0] = c;
+    return;
+  }
   for (std::size_t i = 0; i < rows; ++i) y[i] = 0.0;
   for (std::size_t j = 0; j < cols; j += block)
     product_block(a, rows, rows, j, std::min(cols, j + block), x, y);

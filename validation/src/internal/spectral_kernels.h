@@ -14,8 +14,8 @@ namespace vcmm::validation::internal {
 /// y = A x for the column-major rows × cols matrix `a` (leading dimension rows), with each
 /// y_i summed exactly as Eigen 3.4's column-major GEMV sums `y.noalias() = A * x`: over
 /// blocks of columns (all of them when cols < 128, else 16, or 4 when a column exceeds
-/// 32000 bytes), within a block in column order from 0, the block sums added to y (from 0) —
-/// so the result is bit for bit Eigen's (spectral_trial_test.cpp checks it), computed with
+/// 32000 bytes), within a block in column order from 0, the block sums added to y (from 0),
+/// and a single row as Eigen's dot product — so the result is bit for bit Eigen's (spectral_trial_test.cpp checks it), computed with
 /// wider vectors where the machine has them.
 void column_major_product(const double* a, std::size_t rows, std::size_t cols, const double* x,
                           double* y);

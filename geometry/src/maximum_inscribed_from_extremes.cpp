@@ -48,7 +48,8 @@ bool hull_bound_holds(const PolarProfile& p, std::vector<std::size_t>& sorted, d
     if (!(dot > 0.0) || cross == 0.0) return false;  // a gap ≥ π/2 or a repeated direction
     if (sense == 0.0) sense = cross;
     if ((cross > 0.0) != (sense > 0.0)) return false;  // not in one angular order
-    const double chord = std::hypot(cs[a] - cs[b], sn[a] - sn[b]);
+    const double ex = cs[a] - cs[b], ey = sn[a] - sn[b];
+    const double chord = std::sqrt(ex * ex + ey * ey);
     chord_sum += chord;
     const double delta = 1.12 * chord;
     const double rho_min = std::min(p.base_radius + p.deviation[a], p.base_radius + p.deviation[b]);

@@ -82,12 +82,16 @@ ValueRange distances_beyond(const PolarProfile& p, const ExtremesScratch& s, Poi
     const ValueRange d = block_range(p, s, b);
     if (!(d.hi > w.hi) && !(d.lo < w.lo)) continue;
     const std::size_t count = block_distances(p, b, c, t);
-    for (std::size_t k = 0; k < count; ++k) {
-      const double x = t[k];
-      r.hi = std::max(r.hi, x);
-      r.lo = std::min(r.lo, x);
-      if (x > above || x < below) visit(b * kRangeBlock + k, x);
+    double hi = t[0], lo = t[0];  // the block's range first (registers, no branches)
+    for (std::size_t k = 1; k < count; ++k) {
+      hi = std::max(hi, t[k]);
+      lo = std::min(lo, t[k]);
     }
+    r.hi = std::max(r.hi, hi);
+    r.lo = std::min(r.lo, lo);
+    if (!(hi > above) && !(lo < below)) continue;
+    for (std::size_t k = 0; k < count; ++k)
+      if (t[k] > above || t[k] < below) visit(b * kRangeBlock + k, t[k]);
   }
   if (r.hi > above && r.lo < below) return r;
   for (std::size_t b = 0; b < blocks; ++b) {

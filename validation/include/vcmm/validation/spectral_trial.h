@@ -19,10 +19,10 @@
 // radial variance of one point (σ_r² (n·u)² + σ_noise²) — the exact law of the DFT of
 // independent Gaussian samples, for any n. Harmonic 1 is the LS (and filter) centre's and is
 // dropped; harmonics above K are below the truncation tolerance. RONt: LS = max − min of the
-// filtered deviations about the estimate's filtered LS circle; MZ: the exact minimum zone of
-// the profile's extreme points, checked against all n filtered points
-// (geometry::minimum_zone_ront_from_extremes); MI, MC: the exact geometry fitters on the n
-// filtered points at the estimate's directions.
+// filtered deviations about the estimate's filtered LS circle; MZ, MI: the exact minimum zone
+// or maximum-inscribed circle of a subset of extreme points, checked against all n filtered
+// points (geometry::minimum_zone_ront_from_extremes, maximum_inscribed_ront_from_extremes);
+// MC: the exact geometry fitter on the n filtered points at the estimate's directions.
 // Neglected (SpectralBound, per trial at 5 standard deviations of every drawn quantity):
 // second-order terms |δ|²/R₀, the kinematic errors evaluated at the estimate's machine
 // positions instead of the expanded and roughened ones, the harmonics above K, and the

@@ -341,12 +341,15 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
   // K_s: the smallest order ≥ 2 whose neglected tail Σ_i 5 h_i Σ_{k>K} H(k) |c_ik| is below
   // the tolerance (|a cos + b sin| ≤ √(a² + b²) at any point).
   std::vector<double> amplitude_5sd(half + 1, 0.0);  // Σ_i 5 h_i H(k) |c_ik|
-  for (std::size_t k = 0; k <= half; ++k)
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto r = static_cast<Eigen::Index>(k), c = static_cast<Eigen::Index>(i);
-      amplitude_5sd[k] +=
-          kSigmas * step[i] * transmission(k, cutoff) * std::hypot(a(r, c), b(r, c));
+  std::vector<double> h_of_k(half + 1);
+  for (std::size_t k = 0; k <= half; ++k) h_of_k[k] = transmission(k, cutoff);
+  for (std::size_t i = 0; i < count; ++i) {  // each sum still over increasing i
+    const auto c = static_cast<Eigen::Index>(i);
+    for (std::size_t k = 0; k <= half; ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      amplitude_5sd[k] += kSigmas * step[i] * h_of_k[k] * std::hypot(a(r, c), b(r, c));
     }
+  }
   std::vector<double> tail(half + 2, 0.0);  // tail[K] = Σ_{k>K}
   for (std::size_t k = half; k-- > 0;) tail[k] = tail[k + 1] + amplitude_5sd[k + 1];
   systematic_order_ = 1;
@@ -432,8 +435,15 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
         else if (i == k)
           cov(r, c) = 1.0;  // a probe term in units of its own u
       }
-    const Eigen::ArrayXd var = (move_x.cwiseProduct(move_x * cov)).rowwise().sum().array() +
-                               (move_y.cwiseProduct(move_y * cov)).rowwise().sum().array();
+    // Independent parameters (the example model's): Σ_i C_ii m_ij², O(nP) instead of O(nP²).
+    const Eigen::ArrayXd var =
+        cov.isDiagonal(0.0)
+            ? ((move_x.array().square().matrix() * cov.diagonal()).array() +
+               (move_y.array().square().matrix() * cov.diagonal()).array())
+                  .eval()
+            : ((move_x.cwiseProduct(move_x * cov)).rowwise().sum().array() +
+               (move_y.cwiseProduct(move_y * cov)).rowwise().sum().array())
+                  .eval();
     displacement_5sd = kSigmas * std::sqrt(var.maxCoeff());
   }
   const double white_5sd = kSigmas * std::sqrt(2.0 * sigma_noise * sigma_noise +

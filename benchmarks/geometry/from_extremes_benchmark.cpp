@@ -14,6 +14,7 @@
 #include <random>
 #include <vector>
 
+#include "support/polar_profiles.h"
 #include "vcmm/geometry/maximum_inscribed.h"
 #include "vcmm/geometry/maximum_inscribed_from_extremes.h"
 #include "vcmm/geometry/minimum_zone.h"
@@ -32,19 +33,10 @@ struct Profiles {
   std::vector<std::vector<double>> deviations;
 };
 
-g::PolarDirections equiangular(std::size_t n) {
-  std::vector<double> c(n), s(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    const double t = 2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(n);
-    c[j] = std::cos(t);
-    s[j] = std::sin(t);
-  }
-  return g::PolarDirections(std::move(c), std::move(s));
-}
 
 const Profiles& profiles() {
   static const Profiles p = [] {
-    Profiles out{equiangular(kPoints), {}};
+    Profiles out{vcmm::test::equiangular_directions(kPoints), {}};
     std::mt19937_64 gen(20261127);
     std::normal_distribution<double> normal;
     std::uniform_real_distribution<double> phase(0.0, 2 * std::numbers::pi);

@@ -12,24 +12,14 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
-#include <random>
 #include <string>
 #include <vector>
 
+#include "support/polar_profiles.h"
 #include "vcmm/geometry/minimum_zone.h"
 
 namespace vcmm::geometry {
 namespace {
-
-PolarDirections equiangular(std::size_t n) {
-  std::vector<double> c(n), s(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    const double t = 2 * std::numbers::pi * static_cast<double>(j) / static_cast<double>(n);
-    c[j] = std::cos(t);
-    s[j] = std::sin(t);
-  }
-  return PolarDirections(std::move(c), std::move(s));
-}
 
 /// The full fitter's centre and the spread of the distances about it, computed as the
 /// function documents (rounded squared distances of the rounded points).
@@ -51,44 +41,6 @@ Reference full_minimum_zone(const PolarProfile& p) {
   return {mz.center, std::sqrt(hi) - std::sqrt(lo), mz.ron.ront};
 }
 
-enum class Regime { band_limited, noise, offset, near_circle, circle, lobed };
-
-std::vector<double> deviations(Regime regime, std::size_t n, std::mt19937_64& gen) {
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::normal_distribution<double> normal;
-  std::vector<double> d(n, 0.0);
-  const auto add_harmonic = [&](std::size_t k, double amplitude, double phase) {
-    for (std::size_t j = 0; j < n; ++j)
-      d[j] += amplitude * std::cos(2 * std::numbers::pi * static_cast<double>(k * j) /
-                                       static_cast<double>(n) + phase);
-  };
-  const std::size_t half = n / 2;
-  switch (regime) {
-    case Regime::band_limited: {  // a filtered form: 1/k amplitudes up to K
-      const std::size_t top = std::min<std::size_t>(half, 3 + gen() % 150);
-      for (std::size_t k = 2; k <= top; ++k)
-        add_harmonic(k, 2e-3 * normal(gen) / static_cast<double>(k), 6.3 * uniform(gen));
-      break;
-    }
-    case Regime::noise:
-      for (double& x : d) x = 1e-3 * normal(gen);
-      break;
-    case Regime::offset:  // a centre 20× the form away: contacts far below the band
-      for (std::size_t k = 2; k <= std::min<std::size_t>(half, 20); ++k)
-        add_harmonic(k, 1e-4 * normal(gen), 6.3 * uniform(gen));
-      add_harmonic(1, 2e-3, 6.3 * uniform(gen));
-      break;
-    case Regime::near_circle:  // form at the rounding level of the coordinates
-      for (double& x : d) x = 1e-14 * normal(gen);
-      break;
-    case Regime::circle:  // all deviations zero: only the rounding of cos, sin and r·u
-      break;
-    case Regime::lobed:  // one pure lobe count: every lobe's peak ties to rounding
-      add_harmonic(2 + gen() % std::min<std::size_t>(7, half - 1), 1e-3, 0.0);
-      break;
-  }
-  return d;
-}
 
 // The same centre (bit for bit) as minimum_zone_circle on all points, the same spread about
 // it, and RONt within 1e-12 mm of the fitter's own value, in every regime.
@@ -97,11 +49,10 @@ TEST(MinimumZoneFromExtremes, EqualsTheMinimumZoneOfAllPoints) {
   const std::vector<std::size_t> sizes{8, 17, 64, 360, 3600};
   int rounds_above_one = 0;
   for (std::uint64_t seed = 1; seed <= 300; ++seed) {
-    std::mt19937_64 gen(seed);
-    const auto regime = static_cast<Regime>(seed % 6);
+    const auto regime = static_cast<test::PolarRegime>(seed % test::kPolarRegimes);
     const std::size_t n = sizes[(seed / 6) % sizes.size()];
-    const PolarDirections directions = equiangular(n);
-    const std::vector<double> d = deviations(regime, n, gen);
+    const PolarDirections directions = test::equiangular_directions(n);
+    const std::vector<double> d = test::polar_deviations(regime, n, seed);
     const PolarProfile profile{85.5, d, &directions};
     const Reference full = full_minimum_zone(profile);
     const double fast = minimum_zone_ront_from_extremes(profile, scratch);
@@ -116,7 +67,7 @@ TEST(MinimumZoneFromExtremes, EqualsTheMinimumZoneOfAllPoints) {
 // Bad input: sizes, non-finite deviations, directions.
 TEST(MinimumZoneFromExtremes, RejectsBadInput) {
   ExtremesScratch scratch;
-  const PolarDirections directions = equiangular(16);
+  const PolarDirections directions = test::equiangular_directions(16);
   const std::vector<double> short_d(15, 0.0);
   EXPECT_THROW(minimum_zone_ront_from_extremes({85.0, short_d, &directions}, scratch),
                InvalidInput);

@@ -11,9 +11,11 @@
 #include <string>
 #include <utility>
 
+#include "internal/spectral_kernels.h"
 #include "internal/stream_random_source.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
+#include "vcmm/geometry/maximum_inscribed_from_extremes.h"
 #include "vcmm/geometry/minimum_zone_from_extremes.h"
 
 namespace vcmm::validation {
@@ -216,6 +218,7 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
   radius_ = g.ls.radius;
   cos_ = g.cos;
   sin_ = g.sin;
+  if (n_ >= 8) directions_.emplace(cos_, sin_);  // the MZ fast path's (geometry::PolarProfile)
 
   // The estimate's filtered deviations, exactly as the exact trial filters (about c₀, R₀), and
   // about the filtered profile's own LS circle (the LS reference).
@@ -278,9 +281,19 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
   Eigen::MatrixXd a(half + 1, count), b(half + 1, count);  // per unit of θ
   std::vector<double> radial(n_), ca(half + 1), cb(half + 1);
   std::vector<geometry::Point2> moved;
-  // Displacements per standard uncertainty (for the second-order bound) and Σ_i 5 h_i |∇Δp|.
-  Eigen::MatrixXd move_x(static_cast<Eigen::Index>(count), static_cast<Eigen::Index>(n_));
-  Eigen::MatrixXd move_y(static_cast<Eigen::Index>(count), static_cast<Eigen::Index>(n_));
+  // Displacements per standard uncertainty (for the second-order bound; point j's row, one
+  // column per parameter: each parameter's displacements are written contiguously) and
+  // Σ_i 5 h_i |∇Δp| (the largest change of a displacement between neighbours per unit of
+  // their distance: squares compared, one square root per parameter).
+  Eigen::MatrixXd move_x(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(count));
+  Eigen::MatrixXd move_y(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(count));
+  std::vector<double> inverse_distance2(n_, 0.0);  // 1/|p_{j+1} − p_j|² (0: coincident)
+  for (std::size_t j = 0; j < n_; ++j) {
+    const std::size_t next = (j + 1) % n_;
+    const double ux = g.profile[next].x - g.profile[j].x, uy = g.profile[next].y - g.profile[j].y;
+    const double d2 = ux * ux + uy * uy;
+    if (d2 > 0.0) inverse_distance2[j] = 1.0 / d2;
+  }
   double gradient_5sd = 0.0;
   for (std::size_t i = 0; i < count; ++i) {
     const Parameter& p = parameters_[i];
@@ -301,20 +314,23 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
     }
     em::simulate_corrected(*prepared_, model, d, em::Stages::only(source),
                            em::Formula::first_order, moved);
-    double gradient = 0.0;
+    double* mx = move_x.col(static_cast<Eigen::Index>(i)).data();
+    double* my = move_y.col(static_cast<Eigen::Index>(i)).data();
     for (std::size_t j = 0; j < n_; ++j) {
       const double dx = moved[j].x - g.profile[j].x, dy = moved[j].y - g.profile[j].y;
       radial[j] = (dx * cos_[j] + dy * sin_[j]) / h;
-      move_x(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = dx;  // at 1 sd
-      move_y(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = dy;
-      const std::size_t next = (j + 1) % n_;
-      const double ex = moved[next].x - g.profile[next].x - dx;
-      const double ey = moved[next].y - g.profile[next].y - dy;
-      const double dist = std::hypot(g.profile[next].x - g.profile[j].x,
-                                     g.profile[next].y - g.profile[j].y);
-      if (dist > 0.0) gradient = std::max(gradient, std::hypot(ex, ey) / dist);
+      mx[j] = dx;  // at 1 sd
+      my[j] = dy;
     }
-    if (p.kind == Parameter::Kind::kinematic) gradient_5sd += kSigmas * gradient;
+    if (p.kind == Parameter::Kind::kinematic) {
+      double gradient2 = 0.0;
+      for (std::size_t j = 0; j < n_; ++j) {
+        const std::size_t next = j + 1 == n_ ? 0 : j + 1;
+        const double ex = mx[next] - mx[j], ey = my[next] - my[j];
+        gradient2 = std::max(gradient2, (ex * ex + ey * ey) * inverse_distance2[j]);
+      }
+      gradient_5sd += kSigmas * std::sqrt(gradient2);
+    }
     transform.coefficients(radial, ca, cb);
     for (std::size_t k = 0; k <= half; ++k) {
       a(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)) = ca[k];
@@ -325,12 +341,15 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
   // K_s: the smallest order ≥ 2 whose neglected tail Σ_i 5 h_i Σ_{k>K} H(k) |c_ik| is below
   // the tolerance (|a cos + b sin| ≤ √(a² + b²) at any point).
   std::vector<double> amplitude_5sd(half + 1, 0.0);  // Σ_i 5 h_i H(k) |c_ik|
-  for (std::size_t k = 0; k <= half; ++k)
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto r = static_cast<Eigen::Index>(k), c = static_cast<Eigen::Index>(i);
-      amplitude_5sd[k] +=
-          kSigmas * step[i] * transmission(k, cutoff) * std::hypot(a(r, c), b(r, c));
+  std::vector<double> h_of_k(half + 1);
+  for (std::size_t k = 0; k <= half; ++k) h_of_k[k] = transmission(k, cutoff);
+  for (std::size_t i = 0; i < count; ++i) {  // each sum still over increasing i
+    const auto c = static_cast<Eigen::Index>(i);
+    for (std::size_t k = 0; k <= half; ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      amplitude_5sd[k] += kSigmas * step[i] * h_of_k[k] * std::hypot(a(r, c), b(r, c));
     }
+  }
   std::vector<double> tail(half + 2, 0.0);  // tail[K] = Σ_{k>K}
   for (std::size_t k = half; k-- > 0;) tail[k] = tail[k + 1] + amplitude_5sd[k + 1];
   systematic_order_ = 1;
@@ -416,8 +435,15 @@ SpectralRingModel::SpectralRingModel(const em::DigitalModel& model, const em::Me
         else if (i == k)
           cov(r, c) = 1.0;  // a probe term in units of its own u
       }
-    const Eigen::ArrayXd var = (move_x.cwiseProduct(cov * move_x)).colwise().sum().array() +
-                               (move_y.cwiseProduct(cov * move_y)).colwise().sum().array();
+    // Independent parameters (the example model's): Σ_i C_ii m_ij², O(nP) instead of O(nP²).
+    const Eigen::ArrayXd var =
+        cov.isDiagonal(0.0)
+            ? ((move_x.array().square().matrix() * cov.diagonal()).array() +
+               (move_y.array().square().matrix() * cov.diagonal()).array())
+                  .eval()
+            : ((move_x.cwiseProduct(move_x * cov)).rowwise().sum().array() +
+               (move_y.cwiseProduct(move_y * cov)).rowwise().sum().array())
+                  .eval();
     displacement_5sd = kSigmas * std::sqrt(var.maxCoeff());
   }
   const double white_5sd = kSigmas * std::sqrt(2.0 * sigma_noise * sigma_noise +
@@ -496,7 +522,11 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
   std::fill(a_.begin(), a_.end(), 0.0);
   std::fill(b_.begin(), b_.end(), 0.0);
   if (m.response_.rows() > 0) {
-    harmonics_.noalias() = m.response_ * theta_;
+    harmonics_.resize(m.response_.rows());
+    internal::column_major_product(m.response_.data(),
+                                   static_cast<std::size_t>(m.response_.rows()),
+                                   static_cast<std::size_t>(m.response_.cols()), theta_.data(),
+                                   harmonics_.data());  // = response_ · θ, bit for bit
     for (std::size_t k = 2; k <= m.systematic_order_; ++k) {
       a_[k] = harmonics_[static_cast<Eigen::Index>(2 * (k - 2))];
       b_[k] = harmonics_[static_cast<Eigen::Index>(2 * (k - 2) + 1)];
@@ -525,23 +555,27 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
   }
   const std::size_t n = m.n_;
   if (m.options_.reference == ReferenceCircle::least_squares) {
-    // Eigen's packet max/min (vectorised, unlike a scalar std::max reduction), evaluated
-    // lazily: two passes, nothing stored.
-    const auto d = kappa * Eigen::Map<const Eigen::ArrayXd>(m.filtered_ls_.data(),
-                                                           static_cast<Eigen::Index>(n)) +
-                   Eigen::Map<const Eigen::ArrayXd>(synthesized_.data(),
-                                                    static_cast<Eigen::Index>(n));
-    y.roundness_mm = d.maxCoeff() - d.minCoeff();
+    // One vectorised pass, nothing stored.
+    y.roundness_mm =
+        internal::scaled_sum_peak_to_valley(kappa, m.filtered_ls_.data(), synthesized_.data(), n);
+    return y;
+  }
+  for (std::size_t j = 0; j < n; ++j)
+    synthesized_[j] += kappa * m.filtered_[j];  // the deviation about (c₀, R₀)
+  if (m.directions_ && (m.options_.reference == ReferenceCircle::minimum_zone ||
+                        m.options_.reference == ReferenceCircle::maximum_inscribed)) {
+    const geometry::PolarProfile profile{m.radius_, synthesized_, &*m.directions_};
+    y.roundness_mm =
+        m.options_.reference == ReferenceCircle::minimum_zone
+            ? geometry::minimum_zone_ront_from_extremes(profile, extremes_)
+            : geometry::maximum_inscribed_ront_from_extremes(profile, extremes_);
     return y;
   }
   for (std::size_t j = 0; j < n; ++j) {
-    synthesized_[j] += kappa * m.filtered_[j];  // the deviation about (c₀, R₀)
     const double r = m.radius_ + synthesized_[j];
     points_[j] = {r * m.cos_[j], r * m.sin_[j]};
   }
-  y.roundness_mm = m.options_.reference == ReferenceCircle::minimum_zone
-                       ? geometry::minimum_zone_ront_from_extremes(points_, synthesized_, minimum_zone_)
-                       : ront_about(points_, m.options_.reference);
+  y.roundness_mm = ront_about(points_, m.options_.reference);
   return y;
 }
 

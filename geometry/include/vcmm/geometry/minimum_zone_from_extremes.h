@@ -4,36 +4,41 @@
 // profile's zone is decided by a few dozen points near its peaks and valleys.
 #pragma once
 
-#include <span>
-#include <vector>
-
-#include "vcmm/geometry/point.h"
+#include "vcmm/geometry/polar_profile.h"
 
 namespace vcmm::geometry {
 
-/// Reusable work arrays of minimum_zone_ront_from_extremes (one per thread).
-struct MinimumZoneScratch {
-  std::vector<Point2> subset;  ///< S at the end (its size: how much was needed)
-  std::vector<unsigned char> member;
-  std::vector<double> flag, squared_distance;
-};
-
-/// RONt about the minimum-zone circle of `points`, computed exactly from a subset: an annulus
-/// that is minimal for a subset S and contains every point is minimal for all points (their
-/// minimum width is at least S's, and this annulus achieves it). S starts as the peaks and
-/// valleys of `deviations` (radial, about any centre near the profile's: they only pick S)
-/// within a quarter of the peak-to-valley of the top or of the bottom, each with two
-/// neighbours either side — where the contacts of a smooth, band-limited profile lie; the
-/// minimum zone of S is checked against all points and the extremes of the violating lobes
-/// (with their neighbours) are added until no point is outside (at most 6 rounds, then the
-/// minimum zone of all points). Returns the spread of the distances of all points about S's
-/// centre: S's width to rounding, i.e. minimum_zone_circle(points).ron.ront to ~1e-13 mm at
-/// R ~ 100 mm (tests/geometry/minimum_zone_from_extremes_test.cpp). `scratch` is reused between
-/// calls. Preconditions: ≥ 8 points and one deviation each (InvalidInput); throws as
-/// minimum_zone_circle. Complexity: a few O(n) passes and the minimum zone of |S| points
-/// (~130 of 3 600 on the filtered example ring: ~4× faster than the whole profile's).
-double minimum_zone_ront_from_extremes(std::span<const Point2> points,
-                                       std::span<const double> deviations,
-                                       MinimumZoneScratch& scratch);
+/// RONt about the minimum-zone circle of the profile `p` (mm), from a subset S of its points.
+///
+/// Argument: an annulus that is the (global) minimum zone of S and contains every point is
+/// the minimum zone of all points — their minimum width is at least S's, and this annulus
+/// achieves it. So: S's minimum zone (minimum_zone_circle, exact contacts, certified global);
+/// then one vectorised pass over all points proves each point outside S inside the annulus
+/// by a rigorous floating test (squared distance from the rounded centre within 64u of the
+/// rounded radii' squares, beyond the rounding of all three, u = 2⁻⁵³); points it cannot
+/// place (outside, or within rounding of a circle) join S and S is fitted again. The points
+/// of S are inside by the fit's own exact certificate. So the zone is exactly the minimum
+/// zone of all points, and its centre the same double as minimum_zone_circle(all points)
+/// reports.
+///
+/// S starts as, per block of 16 consecutive points, the highest local maximum of the
+/// deviations if it lies within 45 % of the peak-to-valley below the highest and the lowest
+/// local minimum if within 45 % above the lowest, each with one neighbour either side: on a
+/// band-limited profile (a filtered one) the contacts lie there — the reference's centre
+/// differs from the deviations' origin by a shift whose harmonic-1 tilt moves a contact down
+/// by at most 2|shift| (measured: ≤ 39 % on the example ring) and an extremum by less than a
+/// sample. Points the test cannot place join with the same neighbours; after 6 fits (or when
+/// S has fewer than 8 points) all points are fitted. Only the speed depends on these choices.
+///
+/// Returns max_j √D̃_j − min_j √D̃_j over all points, D̃_j the rounded squared distance of
+/// point j from the centre: R − r to a few ulps (within 1e-13 mm of
+/// minimum_zone_circle(points).ron.ront at R ~ 100 mm). Sets s.center to the centre, and
+/// s.rounds, s.fell_back, s.subset (S) for inspection.
+/// Preconditions: ≥ 8 points, one direction each, finite deviations (InvalidInput naming the
+/// rule); throws as minimum_zone_circle. Complexity: one vectorised O(n) pass over the
+/// deviations, squared distances only in the blocks that can reach the zone's circles, and
+/// the minimum zone of |S| points (~170 of 3 600 on the filtered example ring; 1.02 fits a
+/// call there).
+double minimum_zone_ront_from_extremes(const PolarProfile& p, ExtremesScratch& s);
 
 }  // namespace vcmm::geometry

@@ -19,10 +19,10 @@
 // radial variance of one point (σ_r² (n·u)² + σ_noise²) — the exact law of the DFT of
 // independent Gaussian samples, for any n. Harmonic 1 is the LS (and filter) centre's and is
 // dropped; harmonics above K are below the truncation tolerance. RONt: LS = max − min of the
-// filtered deviations about the estimate's filtered LS circle; MZ: the exact minimum zone of
-// the profile's extreme points, checked against all n filtered points
-// (geometry::minimum_zone_ront_from_extremes); MI, MC: the exact geometry fitters on the n
-// filtered points at the estimate's directions.
+// filtered deviations about the estimate's filtered LS circle; MZ, MI: the exact minimum zone
+// or maximum-inscribed circle of a subset of extreme points, checked against all n filtered
+// points (geometry::minimum_zone_ront_from_extremes, maximum_inscribed_ront_from_extremes);
+// MC: the exact geometry fitter on the n filtered points at the estimate's directions.
 // Neglected (SpectralBound, per trial at 5 standard deviations of every drawn quantity):
 // second-order terms |δ|²/R₀, the kinematic errors evaluated at the estimate's machine
 // positions instead of the expanded and roughened ones, the harmonics above K, and the
@@ -49,8 +49,8 @@
 #include "vcmm/errormodel/measurement.h"
 #include "vcmm/errormodel/virtual_cmm.h"
 #include "vcmm/geometry/equiangular_transform.h"
-#include "vcmm/geometry/minimum_zone_from_extremes.h"
 #include "vcmm/geometry/point.h"
+#include "vcmm/geometry/polar_profile.h"
 #include "vcmm/uncertainty/monte_carlo.h"
 #include "vcmm/uncertainty/random_stream.h"
 #include "vcmm/validation/ring_evaluation.h"
@@ -143,6 +143,7 @@ class SpectralRingModel {
   double radius_ = 0.0;           ///< R₀
   double estimated_scale_ = 1.0;  ///< ŝ
   std::vector<double> cos_, sin_;        ///< estimate directions about c₀
+  std::optional<geometry::PolarDirections> directions_;  ///< the same, checked (n ≥ 8)
   std::vector<double> filtered_;         ///< f̂_j about (c₀, R₀)
   std::vector<double> filtered_ls_;      ///< f̂ about the filtered estimate's LS circle
   std::vector<Parameter> parameters_;
@@ -174,7 +175,7 @@ class SpectralRingTrial {
   Eigen::VectorXd theta_, harmonics_;
   std::vector<double> white_, a_, b_, synthesized_;
   std::vector<geometry::Point2> points_;
-  geometry::MinimumZoneScratch minimum_zone_;
+  geometry::ExtremesScratch extremes_;
   geometry::EquiangularTransform transform_;
 };
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 namespace vcmm::geometry::internal {
@@ -43,6 +44,9 @@ class ComplexFft {
   /// In place: x_j = Σ_k X_k e^{+2πi jk/n} (unnormalised). Exchanging the real and imaginary
   /// parts maps z to i conj(z), and DFT(i conj z) = i conj(IDFT(z)).
   void inverse(double* re, double* im) { forward(im, re); }
+  /// forward() by the named instruction-set variant (fft_variants(); std::invalid_argument for
+  /// another name): for tests and benchmarks — every variant gives the same bits.
+  void forward_with(std::string_view variant, double* re, double* im);
 
   struct Stage {
     std::size_t radix = 0;
@@ -50,11 +54,15 @@ class ComplexFft {
     std::vector<double> tw_re, tw_im;  // [(u − 1) m + p] = ω_L^{p u}, L = radix · m
     std::vector<Cx> roots;             // ω_radix^t, generic radices only
   };
+  /// All passes of a plan on (re, im) with scratch (sr, si): one per instruction-set variant.
+  using StagePasses = void (*)(const Stage* stages, std::size_t count, double* re,
+                               double* im, double* sr, double* si);
 
  private:
   static std::size_t smooth_size_at_least(std::size_t v);
   void setup_bluestein();
-  void bluestein(double* re, double* im);
+  void run(StagePasses passes, double* re, double* im);
+  void bluestein(StagePasses passes, double* re, double* im);
 
   std::size_t n_;
   std::vector<Stage> stages_;
@@ -63,6 +71,17 @@ class ComplexFft {
   std::vector<Cx> chirp_, chirp_hat_;
   std::vector<double> work_re_, work_im_;
 };
+
+/// An instruction-set variant of the FFT's passes, compiled from the same source: "baseline"
+/// (the package's target ISA) and, on x86-64 CPUs that have it, "avx2" (4 doubles a vector;
+/// no FMA). Same operations in the same order, so the same bits on every machine
+/// (tests/geometry/fft_test.cpp); forward() uses the last (widest) one, chosen once.
+struct FftVariant {
+  std::string_view name;
+  ComplexFft::StagePasses passes;
+};
+/// The variants this CPU can run, baseline first.
+const std::vector<FftVariant>& fft_variants();
 
 /// The plan of size n from a small per-thread cache of `capacity` sizes (most recently used
 /// first). Plans hold their own scratch, so a thread-local cache is also what makes concurrent

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "../../geometry/src/internal/fft.h"
@@ -47,6 +48,34 @@ void BM_ComplexFft(benchmark::State& state) {
 }
 BENCHMARK(BM_ComplexFft)->Arg(360)->Arg(1800)->Arg(3600)->Arg(3607)->Unit(benchmark::kMicrosecond);
 
+// The same with a named instruction-set variant (0: baseline, 1: avx2 where the CPU has it).
+void BM_ComplexFftVariant(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto& variants = g::internal::fft_variants();
+  const auto v = static_cast<std::size_t>(state.range(1));
+  if (v >= variants.size()) {
+    state.SkipWithError("variant not available on this CPU");
+    return;
+  }
+  state.SetLabel(std::string(variants[v].name));
+  g::internal::ComplexFft fft(n);
+  const std::vector<double> re0 = random_values(n, 1), im0 = random_values(n, 2);
+  std::vector<double> re = re0, im = im0;
+  std::size_t calls = 0;
+  for (auto _ : state) {
+    fft.forward_with(variants[v].name, re.data(), im.data());
+    benchmark::DoNotOptimize(re.data());
+    benchmark::ClobberMemory();
+    if (++calls % 64 == 0) {
+      re = re0;
+      im = im0;
+    }
+  }
+}
+BENCHMARK(BM_ComplexFftVariant)
+    ->ArgsProduct({{360, 1800, 3600}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
 void BM_EquiangularValues(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const auto k = static_cast<std::size_t>(state.range(1));
@@ -60,6 +89,9 @@ void BM_EquiangularValues(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_EquiangularValues)
+    ->Args({3600, 0})
+    ->Args({3600, 5})
+    ->Args({3600, 20})
     ->Args({3600, 50})
     ->Args({3600, 150})
     ->Args({3600, 250})

@@ -114,6 +114,45 @@ struct Butterfly<5> {
   }
 };
 
+// Radix 9 as 3 × 3: with t = t2 + 3 t1 and u = u1 + 3 u2, ω_9^{tu} = ω_3^{t1 u1} ω_9^{t2 u1}
+// ω_3^{t2 u2}: radix 3 over t1 for each t2, the twiddles ω_9^{t2 u1}, radix 3 over t2.
+template <>
+struct Butterfly<9> {
+  template <class T>
+  [[gnu::always_inline]] static void apply(T (&r)[9], T (&i)[9]) {
+    constexpr double kC1 = 0.76604444311897803520, kS1 = 0.64278760968653932632;  // 2π/9
+    constexpr double kC2 = 0.17364817766693034885, kS2 = 0.98480775301220805936;  // 4π/9
+    constexpr double kC4 = -0.93969262078590838405, kS4 = 0.34202014332566873304;  // 8π/9
+    T br[3][3], bi[3][3];  // [t2][u1]
+    for (int t2 = 0; t2 < 3; ++t2) {
+      T ar[3] = {r[t2], r[t2 + 3], r[t2 + 6]}, ai[3] = {i[t2], i[t2 + 3], i[t2 + 6]};
+      Butterfly<3>::apply(ar, ai);
+      for (int u1 = 0; u1 < 3; ++u1) {
+        br[t2][u1] = ar[u1];
+        bi[t2][u1] = ai[u1];
+      }
+    }
+    // (x + iy)(c − is) = (xc + ys) + i(yc − xs)
+    const auto rotate = [](T& x, T& y, double c, double sn) {
+      const T x0 = x;
+      x = x0 * c + y * sn;
+      y = y * c - x0 * sn;
+    };
+    rotate(br[1][1], bi[1][1], kC1, kS1);
+    rotate(br[1][2], bi[1][2], kC2, kS2);
+    rotate(br[2][1], bi[2][1], kC2, kS2);
+    rotate(br[2][2], bi[2][2], kC4, kS4);
+    for (int u1 = 0; u1 < 3; ++u1) {
+      T ar[3] = {br[0][u1], br[1][u1], br[2][u1]}, ai[3] = {bi[0][u1], bi[1][u1], bi[2][u1]};
+      Butterfly<3>::apply(ar, ai);
+      for (int u2 = 0; u2 < 3; ++u2) {
+        r[u1 + 3 * u2] = ar[u2];
+        i[u1 + 3 * u2] = ai[u2];
+      }
+    }
+  }
+};
+
 // Radix 8 as 2 × 4: b_t = a_t + a_{t+4}, c_t = (a_t − a_{t+4}) ω_8^t (t < 4); then
 // X_{2u} = Σ_t b_t ω_4^{tu} and X_{2u+1} = Σ_t c_t ω_4^{tu}.
 template <>
@@ -169,6 +208,7 @@ template <>
 struct VecOf<4> {
   using type = double __attribute__((vector_size(32)));
 };
+
 
 template <class T>
 [[gnu::always_inline]] inline T load(const double* p) {
@@ -269,7 +309,7 @@ template <std::size_t R, int W>
     std::size_t q = 0;
     for (; q + W <= s; q += W)
       general_butterfly<R, V>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
-    if constexpr (W == 4) {
+    if constexpr (W >= 4) {
       using V2 = typename VecOf<2>::type;
       for (; q + 2 <= s; q += 2)
         general_butterfly<R, V2>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
@@ -351,7 +391,7 @@ template <std::size_t R, int W>
   };
   std::size_t q = 0;
   for (; q + W <= s; q += W) butterfly.template operator()<V>(q);
-  if constexpr (W == 4)
+  if constexpr (W >= 4)
     for (; q + 2 <= s; q += 2) butterfly.template operator()<typename VecOf<2>::type>(q);
   for (; q < s; ++q) butterfly.template operator()<double>(q);
 }
@@ -405,6 +445,7 @@ template <int W>
       case 4: radix_pass<4, W>(xr, xi, yr, yi, s, st); break;
       case 5: radix_pass<5, W>(xr, xi, yr, yi, s, st); break;
       case 8: radix_pass<8, W>(xr, xi, yr, yi, s, st); break;
+      case 9: radix_pass<9, W>(xr, xi, yr, yi, s, st); break;
       default: generic_pass(xr, xi, yr, yi, s, st); break;
     }
     std::swap(xr, yr);
@@ -419,6 +460,7 @@ template <int W>
       case 4: last_pass_in_place<4, W>(xr, xi, s); break;
       case 5: last_pass_in_place<5, W>(xr, xi, s); break;
       case 8: last_pass_in_place<8, W>(xr, xi, s); break;
+      case 9: last_pass_in_place<9, W>(xr, xi, s); break;
       default: generic_pass(xr, xi, xr, xi, s, st); break;  // reads a q's inputs first
     }
   }
@@ -470,7 +512,7 @@ ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
     radices.push_back(4);
     rest /= 4;
   }
-  for (std::size_t p : {2, 3, 5, 7, 11, 13}) {
+  for (std::size_t p : {2, 5, 9, 3, 7, 11, 13}) {
     while (rest % p == 0) {
       radices.push_back(p);
       rest /= p;
@@ -494,7 +536,7 @@ ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
         st.tw_im[(u - 1) * st.m + p] = w.im;
       }
     }
-    if (r > 5) {
+    if (r == 7 || r == 11 || r == 13) {  // the generic radices
       st.roots.resize(r);
       for (std::size_t t = 0; t < r; ++t) st.roots[t] = unit_root(t, r);
     }

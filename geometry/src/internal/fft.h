@@ -1,12 +1,14 @@
 // geometry/src/internal/fft.h — the complex FFT of the geometry module (used by the Gaussian
 // filter and the harmonic analysis of closed profiles). Not part of the public API.
 //
-// A small mixed-radix Stockham FFT (radices 4, 2, 3, 5 and 7/11/13 by direct DFT) with
+// A small mixed-radix Stockham FFT (radices 8, 4, 2, 5, 9, 3 and 7/11/13 by direct DFT) with
 // Bluestein's chirp-z algorithm for sizes with a larger prime factor (prime n costs ~6 FFTs of a
 // smooth size ≥ 2n). Eigen's kissfft backend was measured first: 41 µs for a forward + inverse
 // real transform at n = 3600 and 0.13 s at the prime n = 3607 (its generic radix is O(p²)),
-// against a 30 µs budget (gaussian_filter.cpp). A plan holds its own scratch: one plan per
-// thread.
+// against a 30 µs budget (gaussian_filter.cpp). The passes are written on vectors of doubles
+// (GCC/Clang vector extensions) and compiled twice, for the package's baseline ISA and for
+// AVX2, chosen once at run time; both give the same bits (fft_variants). A plan holds its own
+// scratch: one plan per thread.
 #pragma once
 
 #include <algorithm>

@@ -1,7 +1,9 @@
 // Tests of the geometry module's complex FFT (geometry/src/internal/fft.h): against a direct
 // DFT in long double for many sizes (smooth, radix 7/11/13, prime and other Bluestein sizes,
-// a seeded sample of 1 … 5000), the inverse, and bit-identity of the instruction-set variants.
+// a seeded sample of 1 … 5000), the inverse, and bit-identity of the instruction-set variants
+// (internal/isa.h) — of the FFT itself and, end to end, of the filter and the synthesis.
 #include "../../geometry/src/internal/fft.h"
+#include "../../geometry/src/internal/isa.h"
 
 #include <gtest/gtest.h>
 
@@ -14,6 +16,11 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "support/test_profiles.h"
+#include "vcmm/geometry/equiangular_transform.h"
+#include "vcmm/geometry/gaussian_filter.h"
+#include "vcmm/geometry/least_squares.h"
 
 namespace vcmm::geometry::internal {
 namespace {
@@ -137,6 +144,43 @@ TEST(ComplexFft, InstructionSetVariantsAreBitIdentical) {
     Signal z = x;  // forward() is one of the variants
     fft.forward(z.re.data(), z.im.data());
     EXPECT_EQ(std::memcmp(z.re.data(), base.re.data(), n * sizeof(double)), 0) << "n = " << n;
+  }
+}
+
+// End to end: the Gaussian filter (FFT path, with its vectorised first pass) and the
+// equiangular synthesis give the same bits with the baseline variants forced (internal/isa.h).
+TEST(InstructionSetVariants, FilterAndSynthesisAreBitIdenticalWithTheBaselineForced) {
+  for (const std::size_t n : {360u, 3600u, 3601u}) {
+    const std::vector<Point2> profile = test::lobed_noisy_ring(n, 20261127, 5e-5);
+    const LeastSquaresCircle ls = least_squares_circle(profile);
+    FilteredProfile fast, base;
+    LeastSquaresCircle fast_ls, base_ls;
+    gaussian_filtered_profile(profile, 50.0, ls, fast, &fast_ls);
+    {
+      ForceBaselineIsa baseline;
+      EXPECT_FALSE(use_avx2());
+      gaussian_filtered_profile(profile, 50.0, ls, base, &base_ls);
+    }
+    ASSERT_EQ(fast.points.size(), base.points.size());
+    EXPECT_EQ(fast.path, FilterPath::fft) << "n = " << n;
+    EXPECT_EQ(std::memcmp(fast.points.data(), base.points.data(), n * sizeof(Point2)), 0)
+        << "n = " << n;
+    EXPECT_EQ(fast_ls.radius, base_ls.radius) << "n = " << n;
+
+    std::vector<double> a(151), b(151), v_fast(n), v_base(n);
+    std::mt19937_64 rng(n);
+    std::normal_distribution<double> z;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      a[k] = z(rng);
+      b[k] = z(rng);
+    }
+    EquiangularTransform tr(n);
+    tr.values(a, b, v_fast);
+    {
+      ForceBaselineIsa baseline;
+      tr.values(a, b, v_base);
+    }
+    EXPECT_EQ(std::memcmp(v_fast.data(), v_base.data(), n * sizeof(double)), 0) << "n = " << n;
   }
 }
 

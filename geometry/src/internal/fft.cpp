@@ -12,11 +12,7 @@
 #include <type_traits>
 #include <utility>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define VCMM_FFT_X86 1
-#else
-#define VCMM_FFT_X86 0
-#endif
+#include "internal/isa.h"
 
 namespace vcmm::geometry::internal {
 
@@ -466,15 +462,14 @@ template <int W>
   }
 }
 
-// The instruction-set variants: the same source, so the same operations in the same order on
-// every element (no reductions, no reassociation; this file is compiled with
-// -ffp-contract=off and the AVX2 variant does not enable FMA), hence bit-identical results.
+// The instruction-set variants (internal/isa.h): the same source, so the same operations in the
+// same order on every element, hence bit-identical results.
 void passes_baseline(const ComplexFft::Stage* stages, std::size_t count,
                      double* re, double* im, double* sr, double* si) {
   run_stages<2>(stages, count, re, im, sr, si);
 }
 
-#if VCMM_FFT_X86
+#if VCMM_GEOMETRY_X86
 __attribute__((target("avx2"))) void passes_avx2(const ComplexFft::Stage* stages,
                                                  std::size_t count, double* re,
                                                  double* im, double* sr, double* si) {
@@ -485,9 +480,8 @@ __attribute__((target("avx2"))) void passes_avx2(const ComplexFft::Stage* stages
 const std::vector<FftVariant>& fft_variants_on_this_cpu() {
   static const std::vector<FftVariant> variants = [] {
     std::vector<FftVariant> out = {{"baseline", passes_baseline}};
-#if VCMM_FFT_X86
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2")) out.push_back({"avx2", passes_avx2});
+#if VCMM_GEOMETRY_X86
+    if (cpu_has_avx2()) out.push_back({"avx2", passes_avx2});
 #endif
     return out;
   }();
@@ -547,7 +541,7 @@ ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
 
 void ComplexFft::forward(double* re, double* im) {
   static const StagePasses widest = fft_variants().back().passes;  // chosen once
-  run(widest, re, im);
+  run(use_avx2() ? widest : passes_baseline, re, im);  // internal/isa.h
 }
 
 void ComplexFft::forward_with(std::string_view variant, double* re, double* im) {

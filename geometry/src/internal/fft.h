@@ -77,7 +77,8 @@ class ComplexFft {
 /// An instruction-set variant of the FFT's passes, compiled from the same source: "baseline"
 /// (the package's target ISA) and, on x86-64 CPUs that have it, "avx2" (4 doubles a vector;
 /// no FMA). Same operations in the same order, so the same bits on every machine
-/// (tests/geometry/fft_test.cpp); forward() uses the last (widest) one, chosen once.
+/// (internal/isa.h; tests/geometry/fft_test.cpp); forward() uses the last (widest) one unless
+/// a ForceBaselineIsa is alive on the thread.
 struct FftVariant {
   std::string_view name;
   ComplexFft::StagePasses passes;

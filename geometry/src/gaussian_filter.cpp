@@ -167,11 +167,7 @@ class ClosedFilterPlan {
         im_[k2] = o2.re - e2.im;
       }
     }
-    fft_.inverse(re_.data(), im_.data());
-    for (std::size_t j = 0; j < half; ++j) {
-      out[2 * j] = re_[j];
-      out[2 * j + 1] = im_[j];
-    }
+    fft_.inverse_interleaved(re_.data(), im_.data(), out);  // y_2j + i y_2j+1
   }
 
   void apply_odd(const double* in, double* out) {

@@ -121,6 +121,26 @@ TEST(ComplexFft, InverseUndoesForwardUpToTheFactorN) {
   }
 }
 
+// The interleaved output of the inverse is the inverse's values, bit for bit, whatever the last
+// pass (fused radix 2/3/4/5/8/9 with even or odd pass counts, generic radix 7/11/13, Bluestein,
+// n = 1).
+TEST(ComplexFft, InterleavedInverseEqualsTheInverseBitForBit) {
+  for (const std::size_t n : {1u, 2u, 3u, 4u, 5u, 7u, 8u, 9u, 11u, 13u, 14u, 40u, 72u, 90u, 360u,
+                              1001u, 1800u, 3600u, 3607u}) {
+    const Signal x = random_signal(n, static_cast<unsigned>(5 * n + 2));
+    Signal a = x, b = x;
+    ComplexFft fft(n);
+    fft.inverse(a.re.data(), a.im.data());
+    std::vector<double> out(2 * n);
+    fft.inverse_interleaved(b.re.data(), b.im.data(), out.data());
+    for (std::size_t j = 0; j < n; ++j) {
+      ASSERT_EQ(std::memcmp(&out[2 * j], &a.re[j], sizeof(double)), 0) << "n " << n << " j " << j;
+      ASSERT_EQ(std::memcmp(&out[2 * j + 1], &a.im[j], sizeof(double)), 0)
+          << "n " << n << " j " << j;
+    }
+  }
+}
+
 // Cross-machine reproducibility: every instruction-set variant this CPU runs gives the bits of
 // the baseline (the same operations in the same order, no FMA), for every kind of plan.
 TEST(ComplexFft, InstructionSetVariantsAreBitIdentical) {

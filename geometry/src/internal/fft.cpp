@@ -392,6 +392,49 @@ template <std::size_t R, int W>
   for (; q < s; ++q) butterfly.template operator()<double>(q);
 }
 
+/// The last pass (m = 1, no twiddles) writing interleaved output: out[2j + first] and
+/// out[2j + 1 − first] take the results of the xr and xi sides (first = 0 for a forward
+/// transform, 1 for the inverse, which runs the forward with the parts exchanged).
+template <std::size_t R, int W>
+[[gnu::always_inline]] inline void last_pass_interleaved(const double* __restrict xr,
+                                                         const double* __restrict xi,
+                                                         std::size_t s, int first,
+                                                         double* __restrict out) {
+  using V = typename VecOf<W>::type;
+  std::size_t q = 0;
+  for (; q + W <= s; q += W) {
+    V ar[R], ai[R];
+    for (std::size_t t = 0; t < R; ++t) {
+      ar[t] = load<V>(xr + q + s * t);
+      ai[t] = load<V>(xi + q + s * t);
+    }
+    Butterfly<R>::apply(ar, ai);
+    for (std::size_t u = 0; u < R; ++u) {
+      const V a = first == 0 ? ar[u] : ai[u], b = first == 0 ? ai[u] : ar[u];
+      double* o = out + 2 * (q + s * u);
+      if constexpr (W == 2) {
+        store(o, V(__builtin_shufflevector(a, b, 0, 2)));
+        store(o + 2, V(__builtin_shufflevector(a, b, 1, 3)));
+      } else {
+        store(o, V(__builtin_shufflevector(a, b, 0, 4, 1, 5)));
+        store(o + 4, V(__builtin_shufflevector(a, b, 2, 6, 3, 7)));
+      }
+    }
+  }
+  for (; q < s; ++q) {
+    double ar[R], ai[R];
+    for (std::size_t t = 0; t < R; ++t) {
+      ar[t] = xr[q + s * t];
+      ai[t] = xi[q + s * t];
+    }
+    Butterfly<R>::apply(ar, ai);
+    for (std::size_t u = 0; u < R; ++u) {
+      out[2 * (q + s * u) + first] = ar[u];
+      out[2 * (q + s * u) + 1 - first] = ai[u];
+    }
+  }
+}
+
 template <std::size_t R, int W>
 [[gnu::always_inline]] inline void radix_pass(const double* __restrict xr,
                                               const double* __restrict xi,
@@ -424,16 +467,33 @@ template <std::size_t R, int W>
 
 /// All stages of a plan: x → y → x …, the result in (re, im). Inlined into each
 /// instruction-set variant below.
+/// out[2j + first] = xr[j], out[2j + 1 − first] = xi[j] (see last_pass_interleaved).
+inline void interleave(const double* xr, const double* xi, std::size_t n, int first,
+                       double* out) {
+  for (std::size_t j = 0; j < n; ++j) {
+    out[2 * j + first] = xr[j];
+    out[2 * j + 1 - first] = xi[j];
+  }
+}
+
+/// All stages of a plan: x → y → x …, the result in (re, im) or, when `interleaved` is not
+/// null, in interleaved[2j + first], interleaved[2j + 1 − first] (re and im then scratch).
+/// Inlined into each instruction-set variant below.
 template <int W>
 [[gnu::always_inline]] inline void run_stages(const ComplexFft::Stage* stages,
-                                              std::size_t count, double* re,
-                                              double* im, double* sr, double* si) {
+                                              std::size_t count, double* re, double* im,
+                                              double* sr, double* si, double* interleaved,
+                                              int first) {
   double *xr = re, *xi = im, *yr = sr, *yi = si;
-  std::size_t s = 1;
-  // An odd number of passes would leave the result in the scratch: the last pass (m = 1)
-  // runs in place instead.
-  const std::size_t out_of_place = count % 2 == 0 ? count : count - 1;
-  for (std::size_t k = 0; k < out_of_place; ++k) {
+  std::size_t s = 1, n = 1;
+  for (std::size_t k = 0; k < count; ++k) n *= stages[k].radix;
+  const std::size_t last_radix = count > 0 ? stages[count - 1].radix : 0;
+  const bool fused_output = interleaved != nullptr && count > 0 && last_radix != 7 &&
+                            last_radix != 11 && last_radix != 13;
+  // The last pass (m = 1) writes the interleaved output, or runs in place when the pass count
+  // is odd (else the result would end in the scratch), or is an ordinary pass.
+  const std::size_t ordinary = fused_output || count % 2 == 1 ? count - 1 : count;
+  for (std::size_t k = 0; k < ordinary; ++k) {
     const ComplexFft::Stage& st = stages[k];
     switch (st.radix) {
       case 2: radix_pass<2, W>(xr, xi, yr, yi, s, st); break;
@@ -448,7 +508,18 @@ template <int W>
     std::swap(xi, yi);
     s *= st.radix;
   }
-  if (out_of_place < count) {  // xr == re here
+  if (ordinary < count && fused_output) {
+    switch (last_radix) {
+      case 2: last_pass_interleaved<2, W>(xr, xi, s, first, interleaved); break;
+      case 3: last_pass_interleaved<3, W>(xr, xi, s, first, interleaved); break;
+      case 4: last_pass_interleaved<4, W>(xr, xi, s, first, interleaved); break;
+      case 5: last_pass_interleaved<5, W>(xr, xi, s, first, interleaved); break;
+      case 8: last_pass_interleaved<8, W>(xr, xi, s, first, interleaved); break;
+      default: last_pass_interleaved<9, W>(xr, xi, s, first, interleaved); break;
+    }
+    return;
+  }
+  if (ordinary < count) {  // xr == re here
     const ComplexFft::Stage& st = stages[count - 1];
     switch (st.radix) {
       case 2: last_pass_in_place<2, W>(xr, xi, s); break;
@@ -460,20 +531,22 @@ template <int W>
       default: generic_pass(xr, xi, xr, xi, s, st); break;  // reads a q's inputs first
     }
   }
+  if (interleaved != nullptr) interleave(re, im, n, first, interleaved);
 }
 
 // The instruction-set variants (internal/isa.h): the same source, so the same operations in the
 // same order on every element, hence bit-identical results.
-void passes_baseline(const ComplexFft::Stage* stages, std::size_t count,
-                     double* re, double* im, double* sr, double* si) {
-  run_stages<2>(stages, count, re, im, sr, si);
+void passes_baseline(const ComplexFft::Stage* stages, std::size_t count, double* re,
+                     double* im, double* sr, double* si, double* interleaved, int first) {
+  run_stages<2>(stages, count, re, im, sr, si, interleaved, first);
 }
 
 #if VCMM_GEOMETRY_X86
 __attribute__((target("avx2"))) void passes_avx2(const ComplexFft::Stage* stages,
-                                                 std::size_t count, double* re,
-                                                 double* im, double* sr, double* si) {
-  run_stages<4>(stages, count, re, im, sr, si);
+                                                 std::size_t count, double* re, double* im,
+                                                 double* sr, double* si, double* interleaved,
+                                                 int first) {
+  run_stages<4>(stages, count, re, im, sr, si, interleaved, first);
 }
 #endif
 
@@ -539,9 +612,15 @@ ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
   }
 }
 
-void ComplexFft::forward(double* re, double* im) {
+ComplexFft::StagePasses ComplexFft::selected_passes() {
   static const StagePasses widest = fft_variants().back().passes;  // chosen once
-  run(use_avx2() ? widest : passes_baseline, re, im);  // internal/isa.h
+  return use_avx2() ? widest : passes_baseline;                    // internal/isa.h
+}
+
+void ComplexFft::forward(double* re, double* im) { run(selected_passes(), re, im); }
+
+void ComplexFft::inverse_interleaved(double* re, double* im, double* out) {
+  run(selected_passes(), im, re, out, 1);  // the inverse: see inverse()
 }
 
 void ComplexFft::forward_with(std::string_view variant, double* re, double* im) {
@@ -550,12 +629,15 @@ void ComplexFft::forward_with(std::string_view variant, double* re, double* im) 
   throw std::invalid_argument("ComplexFft::forward_with: no variant " + std::string(variant));
 }
 
-void ComplexFft::run(StagePasses passes, double* re, double* im) {
+void ComplexFft::run(StagePasses passes, double* re, double* im, double* interleaved,
+                     int first) {
   if (conv_) {
     bluestein(passes, re, im);
+    if (interleaved != nullptr) interleave(re, im, n_, first, interleaved);
     return;
   }
-  passes(stages_.data(), stages_.size(), re, im, scratch_re_.data(), scratch_im_.data());
+  passes(stages_.data(), stages_.size(), re, im, scratch_re_.data(), scratch_im_.data(),
+         interleaved, first);
 }
 
 // Bluestein: jk = (j² + k² − (k − j)²)/2, so X_k = c_k Σ_j (x_j c_j) conj(c_{k−j}) with the

@@ -46,6 +46,10 @@ class ComplexFft {
   /// In place: x_j = Σ_k X_k e^{+2πi jk/n} (unnormalised). Exchanging the real and imaginary
   /// parts maps z to i conj(z), and DFT(i conj z) = i conj(IDFT(z)).
   void inverse(double* re, double* im) { forward(im, re); }
+  /// inverse() with the result written interleaved, out[2j] = Re x_j, out[2j + 1] = Im x_j, by
+  /// its last pass (re and im are left as scratch): the same values, one pass less for callers
+  /// that want pairs (the real transforms of even length). out: 2n doubles, not re or im.
+  void inverse_interleaved(double* re, double* im, double* out);
   /// forward() by the named instruction-set variant (fft_variants(); std::invalid_argument for
   /// another name): for tests and benchmarks — every variant gives the same bits.
   void forward_with(std::string_view variant, double* re, double* im);
@@ -58,12 +62,15 @@ class ComplexFft {
   };
   /// All passes of a plan on (re, im) with scratch (sr, si): one per instruction-set variant.
   using StagePasses = void (*)(const Stage* stages, std::size_t count, double* re,
-                               double* im, double* sr, double* si);
+                               double* im, double* sr, double* si, double* interleaved,
+                               int first);
 
  private:
   static std::size_t smooth_size_at_least(std::size_t v);
   void setup_bluestein();
-  void run(StagePasses passes, double* re, double* im);
+  static StagePasses selected_passes();
+  void run(StagePasses passes, double* re, double* im, double* interleaved = nullptr,
+           int first = 0);
   void bluestein(StagePasses passes, double* re, double* im);
 
   std::size_t n_;

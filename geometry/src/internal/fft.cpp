@@ -251,6 +251,18 @@ template <int W, class V>
 // pass (s = 1) is vectorised across p instead, with the R outputs of W consecutive p transposed
 // into place. Every element sees the same operations in the same order on every path.
 
+/// a_t = x[t · stride] for t < R, transformed by the radix-R butterfly.
+template <std::size_t R, class T>
+[[gnu::always_inline]] inline void load_and_transform(const double* xr, const double* xi,
+                                                      std::size_t stride, T (&ar)[R],
+                                                      T (&ai)[R]) {
+  for (std::size_t t = 0; t < R; ++t) {
+    ar[t] = load<T>(xr + t * stride);
+    ai[t] = load<T>(xi + t * stride);
+  }
+  Butterfly<R>::apply(ar, ai);
+}
+
 /// One butterfly of the general pass at (p, q), on element type T (double or a vector).
 template <std::size_t R, class T>
 [[gnu::always_inline]] inline void general_butterfly(const double* __restrict xr,
@@ -260,11 +272,7 @@ template <std::size_t R, class T>
                                                      std::size_t sm, const double (&c)[R],
                                                      const double (&d)[R], bool twiddled) {
   T ar[R], ai[R];
-  for (std::size_t t = 0; t < R; ++t) {
-    ar[t] = load<T>(xr + t * sm);
-    ai[t] = load<T>(xi + t * sm);
-  }
-  Butterfly<R>::apply(ar, ai);
+  load_and_transform(xr, xi, sm, ar, ai);
   store(yr, ar[0]);
   store(yi, ai[0]);
   for (std::size_t u = 1; u < R; ++u) {
@@ -375,11 +383,7 @@ template <std::size_t R, int W>
   using V = typename VecOf<W>::type;
   const auto butterfly = [&]<class T>(std::size_t q) {
     T ar[R], ai[R];
-    for (std::size_t t = 0; t < R; ++t) {
-      ar[t] = load<T>(xr + q + s * t);
-      ai[t] = load<T>(xi + q + s * t);
-    }
-    Butterfly<R>::apply(ar, ai);
+    load_and_transform(xr + q, xi + q, s, ar, ai);
     for (std::size_t u = 0; u < R; ++u) {
       store(xr + q + s * u, ar[u]);
       store(xi + q + s * u, ai[u]);
@@ -404,11 +408,7 @@ template <std::size_t R, int W>
   std::size_t q = 0;
   for (; q + W <= s; q += W) {
     V ar[R], ai[R];
-    for (std::size_t t = 0; t < R; ++t) {
-      ar[t] = load<V>(xr + q + s * t);
-      ai[t] = load<V>(xi + q + s * t);
-    }
-    Butterfly<R>::apply(ar, ai);
+    load_and_transform(xr + q, xi + q, s, ar, ai);
     for (std::size_t u = 0; u < R; ++u) {
       const V a = first == 0 ? ar[u] : ai[u], b = first == 0 ? ai[u] : ar[u];
       double* o = out + 2 * (q + s * u);
@@ -423,11 +423,7 @@ template <std::size_t R, int W>
   }
   for (; q < s; ++q) {
     double ar[R], ai[R];
-    for (std::size_t t = 0; t < R; ++t) {
-      ar[t] = xr[q + s * t];
-      ai[t] = xi[q + s * t];
-    }
-    Butterfly<R>::apply(ar, ai);
+    load_and_transform(xr + q, xi + q, s, ar, ai);
     for (std::size_t u = 0; u < R; ++u) {
       out[2 * (q + s * u) + first] = ar[u];
       out[2 * (q + s * u) + 1 - first] = ai[u];

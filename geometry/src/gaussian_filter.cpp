@@ -99,13 +99,57 @@ using internal::unit_root;
 
 
 // ---- the closed-profile filter of one size: real FFT + transmission -------------------------
+
+/// re[j] = in[2j], im[j] = in[2j + 1] for j < m (restrict: vectorised).
+void deinterleave(const double* __restrict in, std::size_t m, double* __restrict re,
+                  double* __restrict im) {
+  for (std::size_t j = 0; j < m; ++j) {
+    re[j] = in[2 * j];
+    im[j] = in[2 * j + 1];
+  }
+}
+
+/// The step of ClosedFilterPlan::apply_even (see there) for the pairs (k, N − k), 1 ≤ k ≤
+/// `pairs` < N − k, in place on (re, im) of length N = half: the operations of the Cx code
+/// there, written out on doubles so that the compiler vectorises across k (the N − k side
+/// read and written backwards); the same values bit for bit.
+void spectrum_pairs(std::size_t pairs, std::size_t half, double* __restrict lr,
+                    double* __restrict li, const double* __restrict h,
+                    const double* __restrict wr, const double* __restrict wi) {
+  double* __restrict hr = lr + half;  // hr[−k] = re[N − k]
+  double* __restrict hi = li + half;
+  const double* __restrict hh = h + half;
+  for (std::size_t k = 1; k <= pairs; ++k) {
+    const auto j = static_cast<std::ptrdiff_t>(k);
+    const double ar = lr[k], ai = li[k], br = hr[-j], bi = -hi[-j];
+    const double er = 0.5 * (ar + br), ei = 0.5 * (ai + bi);
+    const double orr = 0.5 * (ai - bi), oi = -(0.5 * (ar - br));  // −i (a − b)/2
+    const double hp = 0.5 * (h[k] + hh[-j]), hm = 0.5 * (h[k] - hh[-j]);
+    const double c = wr[k], d = wi[k], nd = -d;
+    const double wo_r = c * orr - d * oi, wo_i = c * oi + d * orr;  // ω^k O
+    const double e2r = hp * er + hm * wo_r, e2i = hp * ei + hm * wo_i;
+    const double we_r = c * er - nd * ei, we_i = c * ei + nd * er;  // conj(ω^k) E
+    const double o2r = hm * we_r + hp * orr, o2i = hm * we_i + hp * oi;
+    lr[k] = e2r - o2i;  // E' + i O'
+    li[k] = e2i + o2r;
+    hr[-j] = e2r + o2i;  // conj E' + i conj O'
+    hi[-j] = o2r - e2i;
+  }
+}
+
 class ClosedFilterPlan {
  public:
   explicit ClosedFilterPlan(std::size_t n)
       : n_(n), even_(n % 2 == 0), fft_(even_ ? n / 2 : n), re_(fft_.size()), im_(fft_.size()) {
     if (even_) {
       half_roots_.resize(n / 4 + 1);
-      for (std::size_t k = 0; k <= n / 4; ++k) half_roots_[k] = unit_root(k, n);
+      roots_re_.resize(n / 4 + 1);
+      roots_im_.resize(n / 4 + 1);
+      for (std::size_t k = 0; k <= n / 4; ++k) {
+        half_roots_[k] = unit_root(k, n);
+        roots_re_[k] = half_roots_[k].re;
+        roots_im_[k] = half_roots_[k].im;
+      }
     }
   }
 
@@ -146,12 +190,13 @@ class ClosedFilterPlan {
   // inverse FFT of Z'. Each pair (k, N − k) is done in place in one step.
   void apply_even(const double* in, double* out) {
     const std::size_t half = n_ / 2;
-    for (std::size_t j = 0; j < half; ++j) {
-      re_[j] = in[2 * j];
-      im_[j] = in[2 * j + 1];
-    }
+    deinterleave(in, half, re_.data(), im_.data());
     fft_.forward(re_.data(), im_.data());
-    for (std::size_t k = 0; 2 * k <= half; ++k) {
+    // The pairs 1 ≤ k < N − k vectorised (spectrum_pairs), then k = 0 and k = N/2 here.
+    const std::size_t pairs = (half - 1) / 2;
+    spectrum_pairs(pairs, half, re_.data(), im_.data(), h_.data(), roots_re_.data(),
+                   roots_im_.data());
+    for (std::size_t k = 0; 2 * k <= half; k = k == 0 ? pairs + 1 : half) {
       const std::size_t k2 = k == 0 ? 0 : half - k;  // partner index (Z_N ≡ Z_0)
       const Cx a{re_[k], im_[k]}, b{re_[k2], -im_[k2]};
       const Cx e = 0.5 * (a + b);
@@ -188,6 +233,7 @@ class ClosedFilterPlan {
   ComplexFft fft_;
   std::vector<double> re_, im_;
   std::vector<Cx> half_roots_;  // ω_n^k, k ≤ n/4 (even n)
+  std::vector<double> roots_re_, roots_im_;  // the same, split
   double cutoff_ = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> h_;
 };

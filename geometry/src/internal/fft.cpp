@@ -26,8 +26,8 @@ Cx unit_root(std::size_t j, std::size_t n) {
 namespace {
 
 // ---- complex FFT on split storage ------------------------------------------------------------
-// Real and imaginary parts live in separate arrays so that the compiler vectorises each
-// butterfly across independent sub-transforms (the q loops below, or p when q has one value).
+// Real and imaginary parts live in separate arrays so that each butterfly is computed on
+// vectors across independent sub-transforms (the q loops below, or p in the first pass).
 
 /// Radix-R DFT butterfly in place: b_u = Σ_t a_t e^{−2πi tu/R}.
 template <std::size_t R>

@@ -231,8 +231,8 @@ namespace {
 // with the fused trial's one-pass kernel. All functions are padded to a common degree D (a
 // template parameter: Horner fully unrolled) and the loop over points is vectorised by the
 // compiler. Built three times (target_clones: AVX-512, AVX2 and baseline x86-64 on GCC/ELF),
-// the clone chosen at load time; without FMA contraction (-ffp-contract=off for this file,
-// errormodel/CMakeLists.txt) all three round identically: results are bit-reproducible across
+// the clone chosen at load time; without FMA contraction (-ffp-contract=off, the
+// top-level CMakeLists.txt) all three round identically: results are bit-reproducible across
 // CPUs.
 using internal::FirstOrderKernel;
 

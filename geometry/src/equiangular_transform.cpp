@@ -90,9 +90,7 @@ void EquiangularTransform::values(std::span<const double> cos, std::span<const d
   };
   if (n % 2 == 0) {
     const std::size_t m = half;  // N
-    std::fill(p.re.begin(), p.re.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
-    std::fill(p.im.begin(), p.im.begin() + static_cast<std::ptrdiff_t>(m), 0.0);
-    // Only k < count and k + N with N − k < count are non-zero: two runs of k.
+    // Only k < count and k + N with N − k < count are non-zero: two runs of k, zero between.
     const auto pair = [&](std::size_t k) {
       const Cx a = y(k);
       const Cx b = k == 0 ? y(m) : conj(y(m - k));  // Y_{k+N}
@@ -104,12 +102,12 @@ void EquiangularTransform::values(std::span<const double> cos, std::span<const d
     const std::size_t low_end = std::min(count, m);
     for (std::size_t k = 0; k < low_end; ++k) pair(k);
     const std::size_t high_start = count > m ? low_end : std::max(low_end, m - count + 1);
+    std::fill(p.re.begin() + static_cast<std::ptrdiff_t>(low_end),
+              p.re.begin() + static_cast<std::ptrdiff_t>(high_start), 0.0);
+    std::fill(p.im.begin() + static_cast<std::ptrdiff_t>(low_end),
+              p.im.begin() + static_cast<std::ptrdiff_t>(high_start), 0.0);
     for (std::size_t k = high_start; k < m; ++k) pair(k);
-    p.half->inverse(p.re.data(), p.im.data());
-    for (std::size_t j = 0; j < m; ++j) {
-      out[2 * j] = p.re[j];
-      out[2 * j + 1] = p.im[j];
-    }
+    p.half->inverse_interleaved(p.re.data(), p.im.data(), out.data());  // z_j → v_2j, v_2j+1
     return;
   }
   std::fill(p.re.begin(), p.re.end(), 0.0);

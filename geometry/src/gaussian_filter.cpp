@@ -68,6 +68,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -79,6 +80,7 @@
 #include "vcmm/geometry/least_squares.h"
 
 #include "internal/fft.h"
+#include "internal/isa.h"
 #include "internal/least_squares_on_rays.h"
 #include "internal/prevalidated.h"
 
@@ -97,13 +99,57 @@ using internal::unit_root;
 
 
 // ---- the closed-profile filter of one size: real FFT + transmission -------------------------
+
+/// re[j] = in[2j], im[j] = in[2j + 1] for j < m (restrict: vectorised).
+void deinterleave(const double* __restrict in, std::size_t m, double* __restrict re,
+                  double* __restrict im) {
+  for (std::size_t j = 0; j < m; ++j) {
+    re[j] = in[2 * j];
+    im[j] = in[2 * j + 1];
+  }
+}
+
+/// The step of ClosedFilterPlan::apply_even (see there) for the pairs (k, N − k), 1 ≤ k ≤
+/// `pairs` < N − k, in place on (re, im) of length N = half: the operations of the Cx code
+/// there, written out on doubles so that the compiler vectorises across k (the N − k side
+/// read and written backwards); the same values bit for bit.
+void spectrum_pairs(std::size_t pairs, std::size_t half, double* __restrict lr,
+                    double* __restrict li, const double* __restrict h,
+                    const double* __restrict wr, const double* __restrict wi) {
+  double* __restrict hr = lr + half;  // hr[−k] = re[N − k]
+  double* __restrict hi = li + half;
+  const double* __restrict hh = h + half;
+  for (std::size_t k = 1; k <= pairs; ++k) {
+    const auto j = static_cast<std::ptrdiff_t>(k);
+    const double ar = lr[k], ai = li[k], br = hr[-j], bi = -hi[-j];
+    const double er = 0.5 * (ar + br), ei = 0.5 * (ai + bi);
+    const double orr = 0.5 * (ai - bi), oi = -(0.5 * (ar - br));  // −i (a − b)/2
+    const double hp = 0.5 * (h[k] + hh[-j]), hm = 0.5 * (h[k] - hh[-j]);
+    const double c = wr[k], d = wi[k], nd = -d;
+    const double wo_r = c * orr - d * oi, wo_i = c * oi + d * orr;  // ω^k O
+    const double e2r = hp * er + hm * wo_r, e2i = hp * ei + hm * wo_i;
+    const double we_r = c * er - nd * ei, we_i = c * ei + nd * er;  // conj(ω^k) E
+    const double o2r = hm * we_r + hp * orr, o2i = hm * we_i + hp * oi;
+    lr[k] = e2r - o2i;  // E' + i O'
+    li[k] = e2i + o2r;
+    hr[-j] = e2r + o2i;  // conj E' + i conj O'
+    hi[-j] = o2r - e2i;
+  }
+}
+
 class ClosedFilterPlan {
  public:
   explicit ClosedFilterPlan(std::size_t n)
       : n_(n), even_(n % 2 == 0), fft_(even_ ? n / 2 : n), re_(fft_.size()), im_(fft_.size()) {
     if (even_) {
       half_roots_.resize(n / 4 + 1);
-      for (std::size_t k = 0; k <= n / 4; ++k) half_roots_[k] = unit_root(k, n);
+      roots_re_.resize(n / 4 + 1);
+      roots_im_.resize(n / 4 + 1);
+      for (std::size_t k = 0; k <= n / 4; ++k) {
+        half_roots_[k] = unit_root(k, n);
+        roots_re_[k] = half_roots_[k].re;
+        roots_im_[k] = half_roots_[k].im;
+      }
     }
   }
 
@@ -144,12 +190,13 @@ class ClosedFilterPlan {
   // inverse FFT of Z'. Each pair (k, N − k) is done in place in one step.
   void apply_even(const double* in, double* out) {
     const std::size_t half = n_ / 2;
-    for (std::size_t j = 0; j < half; ++j) {
-      re_[j] = in[2 * j];
-      im_[j] = in[2 * j + 1];
-    }
+    deinterleave(in, half, re_.data(), im_.data());
     fft_.forward(re_.data(), im_.data());
-    for (std::size_t k = 0; 2 * k <= half; ++k) {
+    // The pairs 1 ≤ k < N − k vectorised (spectrum_pairs), then k = 0 and k = N/2 here.
+    const std::size_t pairs = (half - 1) / 2;
+    spectrum_pairs(pairs, half, re_.data(), im_.data(), h_.data(), roots_re_.data(),
+                   roots_im_.data());
+    for (std::size_t k = 0; 2 * k <= half; k = k == 0 ? pairs + 1 : half) {
       const std::size_t k2 = k == 0 ? 0 : half - k;  // partner index (Z_N ≡ Z_0)
       const Cx a{re_[k], im_[k]}, b{re_[k2], -im_[k2]};
       const Cx e = 0.5 * (a + b);
@@ -165,11 +212,7 @@ class ClosedFilterPlan {
         im_[k2] = o2.re - e2.im;
       }
     }
-    fft_.inverse(re_.data(), im_.data());
-    for (std::size_t j = 0; j < half; ++j) {
-      out[2 * j] = re_[j];
-      out[2 * j + 1] = im_[j];
-    }
+    fft_.inverse_interleaved(re_.data(), im_.data(), out);  // y_2j + i y_2j+1
   }
 
   void apply_odd(const double* in, double* out) {
@@ -190,6 +233,7 @@ class ClosedFilterPlan {
   ComplexFft fft_;
   std::vector<double> re_, im_;
   std::vector<Cx> half_roots_;  // ω_n^k, k ≤ n/4 (even n)
+  std::vector<double> roots_re_, roots_im_;  // the same, split
   double cutoff_ = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> h_;
 };
@@ -277,8 +321,8 @@ std::vector<double> filter_nonuniform(const std::vector<double>& angle,
 
 // ---- equiangular detection ----------------------------------------------------------------------
 
-/// Directions p_i − c about the filter centre, their squared lengths (r: overwritten by the
-/// lengths only off the series' range, see filter_about) and reciprocal lengths, in
+/// Directions p_i − c about the filter centre, their lengths (r: set only off the series'
+/// range, see filter_about) and reciprocal lengths, in
 /// structure-of-arrays form (vectorised products), with the deviations, their filtered values,
 /// the sines of the grid displacements and two scratch arrays. One per thread, kept between
 /// calls: reallocating them per call cost ~10 page faults per array at n = 36 000.
@@ -317,13 +361,13 @@ const GridTable& grid_table(Eigen::Index count) {
   return t;
 }
 
-/// The verdict on the grid displacements once sin δ_j (in v.sin_delta) and |r_j| cos δ_j
-/// (minimum `min_cos`) are known: the largest |sin δ_j|, or +∞ when some ray is more than a
-/// quarter step off its grid position (then the samples are not in equiangular order).
-double grid_verdict(const Rays& v, Eigen::Index count, double min_cos) {
+/// The verdict on the grid displacements once sin δ_j (in v.sin_delta) is known and whether
+/// every |r_j| cos δ_j > 0: the largest |sin δ_j|, or +∞ when some ray is more than a quarter
+/// step off its grid position (then the samples are not in equiangular order).
+double grid_verdict(const Rays& v, Eigen::Index count, bool all_cos_positive) {
   const double step = 2 * kPi / static_cast<double>(count);
   const double max_sin = v.sin_delta.head(count).abs().maxCoeff();
-  if (!(min_cos > 0.0) || !(max_sin <= std::sin(0.25 * step)))
+  if (!all_cos_positive || !(max_sin <= std::sin(0.25 * step)))
     return std::numeric_limits<double>::infinity();
   return max_sin;
 }
@@ -345,7 +389,7 @@ double max_grid_displacement_sine(Rays& v, Eigen::Index count) {
   const auto yr = y * c - x * sn;
   const double x0 = v.x[0] * v.inv_r[0], y0 = v.y[0] * v.inv_r[0];  // unit ray 0
   v.sin_delta.head(count) = (x0 * yr - y0 * xr) * v.inv_r.head(count);
-  return grid_verdict(v, count, (x0 * xr + y0 * yr).minCoeff());
+  return grid_verdict(v, count, (x0 * xr + y0 * yr).minCoeff() > 0.0);
 }
 
 /// Accepts the FFT result w of samples whose angles are off the equiangular grid by δ_j
@@ -450,18 +494,26 @@ void check_filter_input(std::span<const Point2> points, double cutoff_upr, const
 }
 
 /// The first pass of filter_about (see there), as a function of its own with restrict
-/// pointers so that GCC vectorises it. xy: the points as x, y pairs; c, s: the grid table
-/// (s already times the sense σ); (x0, y0): the unit ray 0.
+/// pointers so that GCC vectorises it. xy: the points as x, y pairs; tc, ts: the grid table
+/// (ts times the sense σ here); (x0, y0): the unit ray 0. Stores the rays, the deviations, the
+/// reciprocal lengths and sin δ_j; of x_j and |r_j| cos δ_j only the verdicts are needed
+/// (every |x_j| ≤ 1e-3: the series holds; every cos term > 0), kept as flags (integer OR:
+/// vectorised like the rest, and exact — the same verdicts as max/min reductions).
 struct SetupPass {
   double cx, cy, r2, half_inv_r2, radius, inv_radius, x0, y0, sense;
 };
-void setup_pass(const SetupPass& k, Eigen::Index count, const double* __restrict xy,
-                const double* __restrict tc, const double* __restrict ts,
-                double* __restrict rx, double* __restrict ry, double* __restrict sq,
-                double* __restrict xs, double* __restrict dev, double* __restrict inv,
-                double* __restrict sin_delta, double* __restrict cos_term) {
+struct SetupVerdict {
+  bool off_series;        ///< some |x_j| > 1e-3 (or not a number)
+  bool non_positive_cos;  ///< some |r_j| cos δ_j ≤ 0 (or not a number)
+};
+[[gnu::always_inline]] inline SetupVerdict setup_pass_body(
+    const SetupPass& k, Eigen::Index count, const double* __restrict xy,
+    const double* __restrict tc, const double* __restrict ts, double* __restrict rx,
+    double* __restrict ry, double* __restrict dev, double* __restrict inv,
+    double* __restrict sin_delta) {
   const double cx = k.cx, cy = k.cy, r2 = k.r2, h = k.half_inv_r2, radius = k.radius;
   const double inv_radius = k.inv_radius, x0 = k.x0, y0 = k.y0, sense = k.sense;
+  std::int64_t off_series = 0, non_positive_cos = 0;
   for (Eigen::Index i = 0; i < count; ++i) {
     const double dx = xy[2 * i] - cx, dy = xy[2 * i + 1] - cy;
     const double s2 = dx * dx + dy * dy;
@@ -472,13 +524,38 @@ void setup_pass(const SetupPass& k, Eigen::Index count, const double* __restrict
     const double xr = dx * c + dy * sn, yr = dy * c - dx * sn;
     rx[i] = dx;
     ry[i] = dy;
-    sq[i] = s2;
-    xs[i] = x;
     dev[i] = radius * x * (1.0 + x * (-0.5 + x * (0.5 + x * (-0.625 + x * 0.875))));
     inv[i] = inv_i;
     sin_delta[i] = (x0 * yr - y0 * xr) * inv_i;
-    cos_term[i] = x0 * xr + y0 * yr;
+    off_series |= static_cast<std::int64_t>(!(std::fabs(x) <= 1e-3));
+    non_positive_cos |= static_cast<std::int64_t>(!(x0 * xr + y0 * yr > 0.0));
   }
+  return {off_series != 0, non_positive_cos != 0};
+}
+
+/// The arrays of setup_pass_body (in the order of its parameters).
+struct SetupArrays {
+  const double *xy, *tc, *ts;
+  double *rx, *ry, *dev, *inv, *sin_delta;
+};
+
+// The pass compiled for the baseline ISA and for AVX2, chosen per call (internal/isa.h): the
+// same element-wise operations, so the same bits.
+SetupVerdict setup_pass_baseline(const SetupPass& k, Eigen::Index count, const SetupArrays& a) {
+  return setup_pass_body(k, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
+}
+#if VCMM_GEOMETRY_X86
+__attribute__((target("avx2"))) SetupVerdict setup_pass_avx2(const SetupPass& k,
+                                                             Eigen::Index count,
+                                                             const SetupArrays& a) {
+  return setup_pass_body(k, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
+}
+#endif
+SetupVerdict setup_pass(const SetupPass& k, Eigen::Index count, const SetupArrays& a) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx2()) return setup_pass_avx2(k, count, a);
+#endif
+  return setup_pass_baseline(k, count, a);
 }
 
 /// The filter of validated points about the circle (center, radius) (file comment), into
@@ -508,7 +585,7 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
   const auto inverse_length = [inv_radius](double x) {
     return inv_radius * (1.0 + x * (-1.0 + x * (1.5 + x * (-2.5 + x * (4.375 + x * -7.875)))));
   };
-  double min_cos = 0.0;
+  SetupVerdict verdict{};
   {
     // Unit ray 0 and the sense of rays 0 → 1, from the values the loop computes.
     const double ax = points[0].x - cx, ay = points[0].y - cy;
@@ -519,14 +596,14 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
     const GridTable& table = grid_table(count);
     static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
     const SetupPass k{cx, cy, r2, half_inv_r2, radius, inv_radius, x0, y0, sense};
-    setup_pass(k, count, reinterpret_cast<const double*>(points.data()), table.cos.data(),
-               table.sin.data(), v.x.data(), v.y.data(), v.r.data(), v.scratch.data(),
-               v.deviation.data(), v.inv_r.data(), v.sin_delta.data(), v.scratch2.data());
-    min_cos = v.scratch2.head(count).minCoeff();
+    verdict = setup_pass(k, count,
+                         {reinterpret_cast<const double*>(points.data()), table.cos.data(),
+                          table.sin.data(), v.x.data(), v.y.data(), v.deviation.data(),
+                          v.inv_r.data(), v.sin_delta.data()});
   }
-  const bool series = v.scratch.abs().maxCoeff() <= 1e-3;
+  const bool series = !verdict.off_series;
   if (!series) {
-    v.r = v.r.sqrt();
+    v.r = (v.x.square() + v.y.square()).sqrt();
     if (!(v.r.minCoeff() > 0.0)) {
       Eigen::Index at_center = 0;
       v.r.minCoeff(&at_center);
@@ -542,7 +619,7 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
   bool done = false;
   if (choice == FilterPathChoice::nonuniform) {
     // the caller asked for the convolution with the true angles
-  } else if (const double s = series ? grid_verdict(v, count, min_cos)
+  } else if (const double s = series ? grid_verdict(v, count, !verdict.non_positive_cos)
                                      : max_grid_displacement_sine(v, count);
              std::isfinite(s)) {
     ClosedFilterPlan& plan = plan_for(n);
@@ -574,10 +651,12 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
 
   // q_i = p_i + (p_i − c) (w_i − d_i) / r_i.
   v.scratch = (v.filtered - v.deviation) * v.inv_r;
-  out.points.resize(n);
+  out.points.clear();  // keeps the storage; no value-initialisation of n points (~1.5 µs)
+  out.points.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto e = static_cast<Eigen::Index>(i);
-    out.points[i] = {points[i].x + v.x[e] * v.scratch[e], points[i].y + v.y[e] * v.scratch[e]};
+    out.points.push_back(
+        {points[i].x + v.x[e] * v.scratch[e], points[i].y + v.y[e] * v.scratch[e]});
   }
   if (filtered_ls) {
     // Output point i is c + (R + w_i) u_i on input ray i: its LS circle in one step from c

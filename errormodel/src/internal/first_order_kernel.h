@@ -5,20 +5,14 @@
 // same order: their results are bit for bit the same. Internal: errormodel sources only.
 //
 // Both including files are compiled without FMA contraction (-ffp-contract=off,
-// errormodel/CMakeLists.txt): their SIMD clones (AVX-512, AVX2, baseline x86-64, chosen at
+// top-level CMakeLists.txt): their SIMD clones (AVX-512, AVX2, baseline x86-64, chosen at
 // load time) then round identically on every CPU.
 #pragma once
 
 #include <Eigen/Core>
 
 #include "vcmm/errormodel/kinematic_errors.h"
-
-// The SIMD clones of the kernels' loops (GCC on x86-64 ELF; one plain build elsewhere).
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__ELF__) && !defined(__SANITIZE_ADDRESS__)
-#define VCMM_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define VCMM_SIMD_CLONES
-#endif
+#include "vcmm/internal/simd_clones.h"
 
 namespace vcmm::errormodel::internal {
 

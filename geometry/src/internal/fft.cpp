@@ -7,7 +7,12 @@
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 #include <utility>
+
+#include "internal/isa.h"
 
 namespace vcmm::geometry::internal {
 
@@ -21,17 +26,20 @@ Cx unit_root(std::size_t j, std::size_t n) {
 namespace {
 
 // ---- complex FFT on split storage ------------------------------------------------------------
-// Real and imaginary parts live in separate arrays so that the compiler vectorises each
-// butterfly across independent sub-transforms (the q loops below, or p when q has one value).
+// Real and imaginary parts live in separate arrays so that each butterfly is computed on
+// vectors across independent sub-transforms (the q loops below, or p in the first pass).
 
 /// Radix-R DFT butterfly in place: b_u = Σ_t a_t e^{−2πi tu/R}.
 template <std::size_t R>
 struct Butterfly;
+// Each apply is a template on the element type T: double, or a vector of doubles (below) whose
+// lanes see exactly the operations of the scalar version.
 
 template <>
 struct Butterfly<2> {
-  static void apply(double (&r)[2], double (&i)[2]) {
-    const double r0 = r[0], i0 = i[0];
+  template <class T>
+  [[gnu::always_inline]] static void apply(T (&r)[2], T (&i)[2]) {
+    const T r0 = r[0], i0 = i[0];
     r[0] = r0 + r[1];
     i[0] = i0 + i[1];
     r[1] = r0 - r[1];
@@ -41,11 +49,12 @@ struct Butterfly<2> {
 
 template <>
 struct Butterfly<3> {
-  static void apply(double (&r)[3], double (&i)[3]) {
+  template <class T>
+  [[gnu::always_inline]] static void apply(T (&r)[3], T (&i)[3]) {
     constexpr double kS3 = 0.86602540378443864676;  // sin(2π/3)
-    const double sr = r[1] + r[2], si = i[1] + i[2];
-    const double tr = r[0] - 0.5 * sr, ti = i[0] - 0.5 * si;
-    const double vr = kS3 * (i[1] - i[2]), vi = -kS3 * (r[1] - r[2]);  // −i (√3/2)(a1 − a2)
+    const T sr = r[1] + r[2], si = i[1] + i[2];
+    const T tr = r[0] - 0.5 * sr, ti = i[0] - 0.5 * si;
+    const T vr = kS3 * (i[1] - i[2]), vi = -kS3 * (r[1] - r[2]);  // −i (√3/2)(a1 − a2)
     r[0] += sr;
     i[0] += si;
     r[1] = tr + vr;
@@ -57,10 +66,11 @@ struct Butterfly<3> {
 
 template <>
 struct Butterfly<4> {
-  static void apply(double (&r)[4], double (&i)[4]) {
-    const double t0r = r[0] + r[2], t0i = i[0] + i[2], t1r = r[0] - r[2], t1i = i[0] - i[2];
-    const double t2r = r[1] + r[3], t2i = i[1] + i[3];
-    const double t3r = i[1] - i[3], t3i = r[3] - r[1];  // −i (a1 − a3)
+  template <class T>
+  [[gnu::always_inline]] static void apply(T (&r)[4], T (&i)[4]) {
+    const T t0r = r[0] + r[2], t0i = i[0] + i[2], t1r = r[0] - r[2], t1i = i[0] - i[2];
+    const T t2r = r[1] + r[3], t2i = i[1] + i[3];
+    const T t3r = i[1] - i[3], t3i = r[3] - r[1];  // −i (a1 − a3)
     r[0] = t0r + t2r;
     i[0] = t0i + t2i;
     r[1] = t1r + t3r;
@@ -74,18 +84,19 @@ struct Butterfly<4> {
 
 template <>
 struct Butterfly<5> {
-  static void apply(double (&r)[5], double (&i)[5]) {
+  template <class T>
+  [[gnu::always_inline]] static void apply(T (&r)[5], T (&i)[5]) {
     constexpr double kC1 = 0.30901699437494742410;   // cos(2π/5)
     constexpr double kC2 = -0.80901699437494742410;  // cos(4π/5)
     constexpr double kS1 = 0.95105651629515357212;   // sin(2π/5)
     constexpr double kS2 = 0.58778525229247312917;   // sin(4π/5)
-    const double t1r = r[1] + r[4], t1i = i[1] + i[4], t2r = r[2] + r[3], t2i = i[2] + i[3];
-    const double t3r = r[1] - r[4], t3i = i[1] - i[4], t4r = r[2] - r[3], t4i = i[2] - i[3];
-    const double c1r = r[0] + kC1 * t1r + kC2 * t2r, c1i = i[0] + kC1 * t1i + kC2 * t2i;
-    const double c2r = r[0] + kC2 * t1r + kC1 * t2r, c2i = i[0] + kC2 * t1i + kC1 * t2i;
+    const T t1r = r[1] + r[4], t1i = i[1] + i[4], t2r = r[2] + r[3], t2i = i[2] + i[3];
+    const T t3r = r[1] - r[4], t3i = i[1] - i[4], t4r = r[2] - r[3], t4i = i[2] - i[3];
+    const T c1r = r[0] + kC1 * t1r + kC2 * t2r, c1i = i[0] + kC1 * t1i + kC2 * t2i;
+    const T c2r = r[0] + kC2 * t1r + kC1 * t2r, c2i = i[0] + kC2 * t1i + kC1 * t2i;
     // s1 = −i (S1 t3 + S2 t4), s2 = −i (S2 t3 − S1 t4)
-    const double s1r = kS1 * t3i + kS2 * t4i, s1i = -(kS1 * t3r + kS2 * t4r);
-    const double s2r = kS2 * t3i - kS1 * t4i, s2i = -(kS2 * t3r - kS1 * t4r);
+    const T s1r = kS1 * t3i + kS2 * t4i, s1i = -(kS1 * t3r + kS2 * t4r);
+    const T s2r = kS2 * t3i - kS1 * t4i, s2i = -(kS2 * t3r - kS1 * t4r);
     r[0] += t1r + t2r;
     i[0] += t1i + t2i;
     r[1] = c1r + s1r;
@@ -99,82 +110,339 @@ struct Butterfly<5> {
   }
 };
 
+// Radix 9 as 3 × 3: with t = t2 + 3 t1 and u = u1 + 3 u2, ω_9^{tu} = ω_3^{t1 u1} ω_9^{t2 u1}
+// ω_3^{t2 u2}: radix 3 over t1 for each t2, the twiddles ω_9^{t2 u1}, radix 3 over t2.
+template <>
+struct Butterfly<9> {
+  template <class T>
+  [[gnu::always_inline]] static void apply(T (&r)[9], T (&i)[9]) {
+    constexpr double kC1 = 0.76604444311897803520, kS1 = 0.64278760968653932632;  // 2π/9
+    constexpr double kC2 = 0.17364817766693034885, kS2 = 0.98480775301220805936;  // 4π/9
+    constexpr double kC4 = -0.93969262078590838405, kS4 = 0.34202014332566873304;  // 8π/9
+    T br[3][3], bi[3][3];  // [t2][u1]
+    for (int t2 = 0; t2 < 3; ++t2) {
+      T ar[3] = {r[t2], r[t2 + 3], r[t2 + 6]}, ai[3] = {i[t2], i[t2 + 3], i[t2 + 6]};
+      Butterfly<3>::apply(ar, ai);
+      for (int u1 = 0; u1 < 3; ++u1) {
+        br[t2][u1] = ar[u1];
+        bi[t2][u1] = ai[u1];
+      }
+    }
+    // (x + iy)(c − is) = (xc + ys) + i(yc − xs)
+    const auto rotate = [](T& x, T& y, double c, double sn) {
+      const T x0 = x;
+      x = x0 * c + y * sn;
+      y = y * c - x0 * sn;
+    };
+    rotate(br[1][1], bi[1][1], kC1, kS1);
+    rotate(br[1][2], bi[1][2], kC2, kS2);
+    rotate(br[2][1], bi[2][1], kC2, kS2);
+    rotate(br[2][2], bi[2][2], kC4, kS4);
+    for (int u1 = 0; u1 < 3; ++u1) {
+      T ar[3] = {br[0][u1], br[1][u1], br[2][u1]}, ai[3] = {bi[0][u1], bi[1][u1], bi[2][u1]};
+      Butterfly<3>::apply(ar, ai);
+      for (int u2 = 0; u2 < 3; ++u2) {
+        r[u1 + 3 * u2] = ar[u2];
+        i[u1 + 3 * u2] = ai[u2];
+      }
+    }
+  }
+};
+
+// Radix 8 as 2 × 4: b_t = a_t + a_{t+4}, c_t = (a_t − a_{t+4}) ω_8^t (t < 4); then
+// X_{2u} = Σ_t b_t ω_4^{tu} and X_{2u+1} = Σ_t c_t ω_4^{tu}.
+template <>
+struct Butterfly<8> {
+  template <class T>
+  [[gnu::always_inline]] static void apply(T (&r)[8], T (&i)[8]) {
+    constexpr double kH = 0.70710678118654752440;  // 1/√2
+    T br[4], bi[4], cr[4], ci[4];
+    for (int t = 0; t < 4; ++t) {
+      br[t] = r[t] + r[t + 4];
+      bi[t] = i[t] + i[t + 4];
+      cr[t] = r[t] - r[t + 4];
+      ci[t] = i[t] - i[t + 4];
+    }
+    {  // ω_8 = (1 − i)/√2, ω_8² = −i, ω_8³ = −(1 + i)/√2
+      const T r1 = cr[1], i1 = ci[1], r3 = cr[3], i3 = ci[3];
+      cr[1] = kH * (r1 + i1);
+      ci[1] = kH * (i1 - r1);
+      const T r2 = cr[2];
+      cr[2] = ci[2];
+      ci[2] = -r2;
+      cr[3] = kH * (i3 - r3);
+      ci[3] = -kH * (r3 + i3);
+    }
+    Butterfly<4>::apply(br, bi);
+    Butterfly<4>::apply(cr, ci);
+    for (int u = 0; u < 4; ++u) {
+      r[2 * u] = br[u];
+      i[2 * u] = bi[u];
+      r[2 * u + 1] = cr[u];
+      i[2 * u + 1] = ci[u];
+    }
+  }
+};
 
 
+
+// ---- vectors of W doubles -------------------------------------------------------------------
+// GCC/Clang vector extensions: element-wise IEEE operations, so each lane computes exactly what
+// the scalar code computes. W = 2 in the baseline variant (SSE2), 4 in the AVX2 variant.
+// The 4-wide helpers are always inlined into the AVX2 variant: no vector crosses a call
+// boundary, so GCC's note that such a return "changes the ABI" without AVX does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+template <int W>
+struct VecOf;
+template <>
+struct VecOf<2> {
+  using type = double __attribute__((vector_size(16)));
+};
+template <>
+struct VecOf<4> {
+  using type = double __attribute__((vector_size(32)));
+};
+
+
+template <class T>
+[[gnu::always_inline]] inline T load(const double* p) {
+  if constexpr (std::is_same_v<T, double>) {
+    return *p;
+  } else {
+    T v;
+    __builtin_memcpy(&v, p, sizeof(T));
+    return v;
+  }
+}
+template <class T>
+[[gnu::always_inline]] inline void store(double* p, T v) {
+  if constexpr (std::is_same_v<T, double>) {
+    *p = v;
+  } else {
+    __builtin_memcpy(p, &v, sizeof(T));
+  }
+}
+
+/// Stores the W × W block rows: out[l·stride + u] = a[u][l] for u, l < W (a transpose).
+template <int W, class V>
+[[gnu::always_inline]] inline void store_transposed(double* out, std::size_t stride,
+                                                    const V* a) {
+  if constexpr (W == 2) {
+    store(out, V(__builtin_shufflevector(a[0], a[1], 0, 2)));
+    store(out + stride, V(__builtin_shufflevector(a[0], a[1], 1, 3)));
+  } else {
+    const V t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 2, 6);  // a0₀ a1₀ a0₂ a1₂
+    const V t1 = __builtin_shufflevector(a[0], a[1], 1, 5, 3, 7);
+    const V t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 2, 6);
+    const V t3 = __builtin_shufflevector(a[2], a[3], 1, 5, 3, 7);
+    store(out, V(__builtin_shufflevector(t0, t2, 0, 1, 4, 5)));
+    store(out + stride, V(__builtin_shufflevector(t1, t3, 0, 1, 4, 5)));
+    store(out + 2 * stride, V(__builtin_shufflevector(t0, t2, 2, 3, 6, 7)));
+    store(out + 3 * stride, V(__builtin_shufflevector(t1, t3, 2, 3, 6, 7)));
+  }
+}
+
+// ---- the passes ---------------------------------------------------------------------------------
 // Stockham autosort, decimation in frequency: with stride s and m = L / R, for p < m, q < s,
 //   y[q + s (R p + u)] = ω_L^{p u} Σ_t x[q + s (p + t m)] ω_R^{t u}.
-template <std::size_t R>
-void radix_pass(const double* __restrict xr, const double* __restrict xi, double* __restrict yr,
-                double* __restrict yi, std::size_t s, const ComplexFft::Stage& st) {
-  const std::size_t m = st.m;
-  const double* __restrict wr = st.tw_re.data();
-  const double* __restrict wi = st.tw_im.data();
-  if (s == 1) {
-    // First stage: the q loop has one iteration, so vectorise over p instead (contiguous
-    // inputs and twiddles, stores with stride R). The same operations per element: the
-    // result is bit-for-bit that of the general loop below (~10 % faster at n = 1800).
-    for (std::size_t p = 0; p < m; ++p) {
-      double ar[R], ai[R];
-      for (std::size_t t = 0; t < R; ++t) {
-        ar[t] = xr[p + t * m];
-        ai[t] = xi[p + t * m];
-      }
-      Butterfly<R>::apply(ar, ai);
-      yr[R * p] = ar[0];
-      yi[R * p] = ai[0];
-      for (std::size_t u = 1; u < R; ++u) {
-        const double c = wr[(u - 1) * m + p], d = wi[(u - 1) * m + p];
-        yr[R * p + u] = ar[u] * c - ai[u] * d;
-        yi[R * p + u] = ar[u] * d + ai[u] * c;
-      }
-    }
-    return;
+// Vectorised across q (W consecutive q at a time, scalar for the rest) when s > 1; the first
+// pass (s = 1) is vectorised across p instead, with the R outputs of W consecutive p transposed
+// into place. Every element sees the same operations in the same order on every path.
+
+/// a_t = x[t · stride] for t < R, transformed by the radix-R butterfly.
+template <std::size_t R, class T>
+[[gnu::always_inline]] inline void load_and_transform(const double* xr, const double* xi,
+                                                      std::size_t stride, T (&ar)[R],
+                                                      T (&ai)[R]) {
+  for (std::size_t t = 0; t < R; ++t) {
+    ar[t] = load<T>(xr + t * stride);
+    ai[t] = load<T>(xi + t * stride);
   }
-  if (m == 1) {
-    // Last stage: the only twiddle is ω^0 = 1, so the multiplication is skipped (the same
-    // values; ~8 % of the transform at n = 1800).
-    for (std::size_t q = 0; q < s; ++q) {
-      double ar[R], ai[R];
-      for (std::size_t t = 0; t < R; ++t) {
-        ar[t] = xr[q + s * t];
-        ai[t] = xi[q + s * t];
-      }
-      Butterfly<R>::apply(ar, ai);
-      for (std::size_t u = 0; u < R; ++u) {
-        yr[q + s * u] = ar[u];
-        yi[q + s * u] = ai[u];
-      }
-    }
-    return;
-  }
-  for (std::size_t p = 0; p < m; ++p) {
-    double c[R], d[R];
-    for (std::size_t u = 1; u < R; ++u) {
-      c[u] = wr[(u - 1) * m + p];
-      d[u] = wi[(u - 1) * m + p];
-    }
-    const double* __restrict ar_base = xr + s * p;
-    const double* __restrict ai_base = xi + s * p;
-    double* __restrict br_base = yr + s * R * p;
-    double* __restrict bi_base = yi + s * R * p;
-    for (std::size_t q = 0; q < s; ++q) {
-      double ar[R], ai[R];
-      for (std::size_t t = 0; t < R; ++t) {
-        ar[t] = ar_base[q + s * t * m];
-        ai[t] = ai_base[q + s * t * m];
-      }
-      Butterfly<R>::apply(ar, ai);
-      br_base[q] = ar[0];
-      bi_base[q] = ai[0];
-      for (std::size_t u = 1; u < R; ++u) {
-        br_base[q + s * u] = ar[u] * c[u] - ai[u] * d[u];
-        bi_base[q + s * u] = ar[u] * d[u] + ai[u] * c[u];
-      }
+  Butterfly<R>::apply(ar, ai);
+}
+
+/// One butterfly of the general pass at (p, q), on element type T (double or a vector).
+template <std::size_t R, class T>
+[[gnu::always_inline]] inline void general_butterfly(const double* __restrict xr,
+                                                     const double* __restrict xi,
+                                                     double* __restrict yr,
+                                                     double* __restrict yi, std::size_t s,
+                                                     std::size_t sm, const double (&c)[R],
+                                                     const double (&d)[R], bool twiddled) {
+  T ar[R], ai[R];
+  load_and_transform(xr, xi, sm, ar, ai);
+  store(yr, ar[0]);
+  store(yi, ai[0]);
+  for (std::size_t u = 1; u < R; ++u) {
+    if (twiddled) {
+      store(yr + s * u, T(ar[u] * c[u] - ai[u] * d[u]));
+      store(yi + s * u, T(ar[u] * d[u] + ai[u] * c[u]));
+    } else {
+      store(yr + s * u, ar[u]);
+      store(yi + s * u, ai[u]);
     }
   }
 }
 
-void generic_pass(const double* xr, const double* xi, double* yr, double* yi, std::size_t s,
+/// A pass with s > 1 (or any pass of radix without a first-pass kernel below). The last pass
+/// (m = 1) has only the twiddle ω^0 = 1: no multiplication (the same values).
+template <std::size_t R, int W>
+[[gnu::always_inline]] inline void strided_pass(const double* __restrict xr,
+                                                const double* __restrict xi,
+                                                double* __restrict yr, double* __restrict yi,
+                                                std::size_t s, const ComplexFft::Stage& st) {
+  using V = typename VecOf<W>::type;
+  const std::size_t m = st.m, sm = s * m;
+  const double* __restrict wr = st.tw_re.data();
+  const double* __restrict wi = st.tw_im.data();
+  const bool twiddled = m > 1;
+  for (std::size_t p = 0; p < m; ++p) {
+    double c[R] = {}, d[R] = {};
+    if (twiddled) {
+      for (std::size_t u = 1; u < R; ++u) {
+        c[u] = wr[(u - 1) * m + p];
+        d[u] = wi[(u - 1) * m + p];
+      }
+    }
+    const double* __restrict ar = xr + s * p;
+    const double* __restrict ai = xi + s * p;
+    double* __restrict br = yr + s * R * p;
+    double* __restrict bi = yi + s * R * p;
+    std::size_t q = 0;
+    for (; q + W <= s; q += W)
+      general_butterfly<R, V>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
+    if constexpr (W >= 4) {
+      using V2 = typename VecOf<2>::type;
+      for (; q + 2 <= s; q += 2)
+        general_butterfly<R, V2>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
+    }
+    for (; q < s; ++q)
+      general_butterfly<R, double>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
+  }
+}
+
+/// The first pass (s = 1) for R a multiple of W (or R = 2, W = 4): W consecutive p at a time,
+/// contiguous loads x[p + t m] and twiddles, the outputs y[R p + u] stored by W × W
+/// transposes; scalar for the last p.
+template <std::size_t R, int W>
+[[gnu::always_inline]] inline void first_pass(const double* __restrict xr,
+                                              const double* __restrict xi,
+                                              double* __restrict yr, double* __restrict yi,
+                                              const ComplexFft::Stage& st) {
+  using V = typename VecOf<W>::type;
+  const std::size_t m = st.m;
+  const double* __restrict wr = st.tw_re.data();
+  const double* __restrict wi = st.tw_im.data();
+  // Same operations as general_butterfly with the twiddles per element.
+  const auto butterfly = [&]<class T>(std::size_t p, T (&ar)[R], T (&ai)[R]) {
+    for (std::size_t t = 0; t < R; ++t) {
+      ar[t] = load<T>(xr + p + t * m);
+      ai[t] = load<T>(xi + p + t * m);
+    }
+    Butterfly<R>::apply(ar, ai);
+    for (std::size_t u = 1; u < R; ++u) {
+      const T c = load<T>(wr + (u - 1) * m + p), d = load<T>(wi + (u - 1) * m + p);
+      const T a = ar[u], b = ai[u];
+      ar[u] = a * c - b * d;
+      ai[u] = a * d + b * c;
+    }
+  };
+  std::size_t p = 0;
+  for (; p + W <= m; p += W) {
+    V ar[R], ai[R];
+    butterfly(p, ar, ai);
+    if constexpr (R % W == 0) {
+      for (std::size_t u = 0; u < R; u += W) {
+        store_transposed<W>(yr + R * p + u, R, ar + u);
+        store_transposed<W>(yi + R * p + u, R, ai + u);
+      }
+    } else {  // R = 2, W = 4: interleave
+      static_assert(R == 2 && W == 4);
+      store(yr + 2 * p, V(__builtin_shufflevector(ar[0], ar[1], 0, 4, 1, 5)));
+      store(yr + 2 * p + 4, V(__builtin_shufflevector(ar[0], ar[1], 2, 6, 3, 7)));
+      store(yi + 2 * p, V(__builtin_shufflevector(ai[0], ai[1], 0, 4, 1, 5)));
+      store(yi + 2 * p + 4, V(__builtin_shufflevector(ai[0], ai[1], 2, 6, 3, 7)));
+    }
+  }
+  for (; p < m; ++p) {
+    double ar[R], ai[R];
+    butterfly(p, ar, ai);
+    for (std::size_t u = 0; u < R; ++u) {
+      yr[R * p + u] = ar[u];
+      yi[R * p + u] = ai[u];
+    }
+  }
+}
+
+/// The last pass (m = 1, no twiddles) in place: each q reads its R values before writing them
+/// back to the same places. Used when the pass count is odd, instead of a copy at the end.
+template <std::size_t R, int W>
+[[gnu::always_inline]] inline void last_pass_in_place(double* xr, double* xi, std::size_t s) {
+  using V = typename VecOf<W>::type;
+  const auto butterfly = [&]<class T>(std::size_t q) {
+    T ar[R], ai[R];
+    load_and_transform(xr + q, xi + q, s, ar, ai);
+    for (std::size_t u = 0; u < R; ++u) {
+      store(xr + q + s * u, ar[u]);
+      store(xi + q + s * u, ai[u]);
+    }
+  };
+  std::size_t q = 0;
+  for (; q + W <= s; q += W) butterfly.template operator()<V>(q);
+  if constexpr (W >= 4)
+    for (; q + 2 <= s; q += 2) butterfly.template operator()<typename VecOf<2>::type>(q);
+  for (; q < s; ++q) butterfly.template operator()<double>(q);
+}
+
+/// The last pass (m = 1, no twiddles) writing interleaved output: out[2j + first] and
+/// out[2j + 1 − first] take the results of the xr and xi sides (first = 0 for a forward
+/// transform, 1 for the inverse, which runs the forward with the parts exchanged).
+template <std::size_t R, int W>
+[[gnu::always_inline]] inline void last_pass_interleaved(const double* __restrict xr,
+                                                         const double* __restrict xi,
+                                                         std::size_t s, int first,
+                                                         double* __restrict out) {
+  using V = typename VecOf<W>::type;
+  std::size_t q = 0;
+  for (; q + W <= s; q += W) {
+    V ar[R], ai[R];
+    load_and_transform(xr + q, xi + q, s, ar, ai);
+    for (std::size_t u = 0; u < R; ++u) {
+      const V a = first == 0 ? ar[u] : ai[u], b = first == 0 ? ai[u] : ar[u];
+      double* o = out + 2 * (q + s * u);
+      if constexpr (W == 2) {
+        store(o, V(__builtin_shufflevector(a, b, 0, 2)));
+        store(o + 2, V(__builtin_shufflevector(a, b, 1, 3)));
+      } else {
+        store(o, V(__builtin_shufflevector(a, b, 0, 4, 1, 5)));
+        store(o + 4, V(__builtin_shufflevector(a, b, 2, 6, 3, 7)));
+      }
+    }
+  }
+  for (; q < s; ++q) {
+    double ar[R], ai[R];
+    load_and_transform(xr + q, xi + q, s, ar, ai);
+    for (std::size_t u = 0; u < R; ++u) {
+      out[2 * (q + s * u) + first] = ar[u];
+      out[2 * (q + s * u) + 1 - first] = ai[u];
+    }
+  }
+}
+
+template <std::size_t R, int W>
+[[gnu::always_inline]] inline void radix_pass(const double* __restrict xr,
+                                              const double* __restrict xi,
+                                              double* __restrict yr, double* __restrict yi,
+                                              std::size_t s, const ComplexFft::Stage& st) {
+  if constexpr (R % W == 0 || R == 2) {
+    if (s == 1 && st.m > 1) return first_pass<R, W>(xr, xi, yr, yi, st);
+  }
+  strided_pass<R, W>(xr, xi, yr, yi, s, st);
+}
+
+[[gnu::always_inline]] inline void generic_pass(const double* xr, const double* xi, double* yr, double* yi, std::size_t s,
                   const ComplexFft::Stage& st) {
   const std::size_t r = st.radix, m = st.m;
   std::array<Cx, 13> a{};
@@ -193,16 +461,121 @@ void generic_pass(const double* xr, const double* xi, double* yr, double* yi, st
   }
 }
 
+/// All stages of a plan: x → y → x …, the result in (re, im). Inlined into each
+/// instruction-set variant below.
+/// out[2j + first] = xr[j], out[2j + 1 − first] = xi[j] (see last_pass_interleaved).
+inline void interleave(const double* xr, const double* xi, std::size_t n, int first,
+                       double* out) {
+  for (std::size_t j = 0; j < n; ++j) {
+    out[2 * j + first] = xr[j];
+    out[2 * j + 1 - first] = xi[j];
+  }
+}
+
+/// All stages of a plan: x → y → x …, the result in (re, im) or, when `interleaved` is not
+/// null, in interleaved[2j + first], interleaved[2j + 1 − first] (re and im then scratch).
+/// Inlined into each instruction-set variant below.
+template <int W>
+[[gnu::always_inline]] inline void run_stages(const ComplexFft::Stage* stages,
+                                              std::size_t count, double* re, double* im,
+                                              double* sr, double* si, double* interleaved,
+                                              int first) {
+  double *xr = re, *xi = im, *yr = sr, *yi = si;
+  std::size_t s = 1, n = 1;
+  for (std::size_t k = 0; k < count; ++k) n *= stages[k].radix;
+  const std::size_t last_radix = count > 0 ? stages[count - 1].radix : 0;
+  const bool fused_output = interleaved != nullptr && count > 0 && last_radix != 7 &&
+                            last_radix != 11 && last_radix != 13;
+  // The last pass (m = 1) writes the interleaved output, or runs in place when the pass count
+  // is odd (else the result would end in the scratch), or is an ordinary pass.
+  const std::size_t ordinary = fused_output || count % 2 == 1 ? count - 1 : count;
+  for (std::size_t k = 0; k < ordinary; ++k) {
+    const ComplexFft::Stage& st = stages[k];
+    switch (st.radix) {
+      case 2: radix_pass<2, W>(xr, xi, yr, yi, s, st); break;
+      case 3: radix_pass<3, W>(xr, xi, yr, yi, s, st); break;
+      case 4: radix_pass<4, W>(xr, xi, yr, yi, s, st); break;
+      case 5: radix_pass<5, W>(xr, xi, yr, yi, s, st); break;
+      case 8: radix_pass<8, W>(xr, xi, yr, yi, s, st); break;
+      case 9: radix_pass<9, W>(xr, xi, yr, yi, s, st); break;
+      default: generic_pass(xr, xi, yr, yi, s, st); break;
+    }
+    std::swap(xr, yr);
+    std::swap(xi, yi);
+    s *= st.radix;
+  }
+  if (ordinary < count && fused_output) {
+    switch (last_radix) {
+      case 2: last_pass_interleaved<2, W>(xr, xi, s, first, interleaved); break;
+      case 3: last_pass_interleaved<3, W>(xr, xi, s, first, interleaved); break;
+      case 4: last_pass_interleaved<4, W>(xr, xi, s, first, interleaved); break;
+      case 5: last_pass_interleaved<5, W>(xr, xi, s, first, interleaved); break;
+      case 8: last_pass_interleaved<8, W>(xr, xi, s, first, interleaved); break;
+      default: last_pass_interleaved<9, W>(xr, xi, s, first, interleaved); break;
+    }
+    return;
+  }
+  if (ordinary < count) {  // xr == re here
+    const ComplexFft::Stage& st = stages[count - 1];
+    switch (st.radix) {
+      case 2: last_pass_in_place<2, W>(xr, xi, s); break;
+      case 3: last_pass_in_place<3, W>(xr, xi, s); break;
+      case 4: last_pass_in_place<4, W>(xr, xi, s); break;
+      case 5: last_pass_in_place<5, W>(xr, xi, s); break;
+      case 8: last_pass_in_place<8, W>(xr, xi, s); break;
+      case 9: last_pass_in_place<9, W>(xr, xi, s); break;
+      default: generic_pass(xr, xi, xr, xi, s, st); break;  // reads a q's inputs first
+    }
+  }
+  if (interleaved != nullptr) interleave(re, im, n, first, interleaved);
+}
+
+// The instruction-set variants (internal/isa.h): the same source, so the same operations in the
+// same order on every element, hence bit-identical results.
+void passes_baseline(const ComplexFft::Stage* stages, std::size_t count, double* re,
+                     double* im, double* sr, double* si, double* interleaved, int first) {
+  run_stages<2>(stages, count, re, im, sr, si, interleaved, first);
+}
+
+#if VCMM_GEOMETRY_X86
+__attribute__((target("avx2"))) void passes_avx2(const ComplexFft::Stage* stages,
+                                                 std::size_t count, double* re, double* im,
+                                                 double* sr, double* si, double* interleaved,
+                                                 int first) {
+  run_stages<4>(stages, count, re, im, sr, si, interleaved, first);
+}
+#endif
+
+const std::vector<FftVariant>& fft_variants_on_this_cpu() {
+  static const std::vector<FftVariant> variants = [] {
+    std::vector<FftVariant> out = {{"baseline", passes_baseline}};
+#if VCMM_GEOMETRY_X86
+    if (cpu_has_avx2()) out.push_back({"avx2", passes_avx2});
+#endif
+    return out;
+  }();
+  return variants;
+}
+
 }  // namespace
+
+const std::vector<FftVariant>& fft_variants() { return fft_variants_on_this_cpu(); }
 
 ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
   std::size_t rest = n;
   std::vector<std::size_t> radices;
+  // Powers of two: radix 4, with one radix 8 when the exponent is odd (≥ 3): fewer passes.
+  std::size_t twos = 0;
+  for (std::size_t v = n; v % 2 == 0 && v > 0; v /= 2) ++twos;
+  if (twos % 2 == 1 && twos >= 3) {
+    radices.push_back(8);
+    rest /= 8;
+  }
   while (rest % 4 == 0) {
     radices.push_back(4);
     rest /= 4;
   }
-  for (std::size_t p : {2, 3, 5, 7, 11, 13}) {
+  for (std::size_t p : {2, 5, 9, 3, 7, 11, 13}) {
     while (rest % p == 0) {
       radices.push_back(p);
       rest /= p;
@@ -226,7 +599,7 @@ ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
         st.tw_im[(u - 1) * st.m + p] = w.im;
       }
     }
-    if (r > 5) {
+    if (r == 7 || r == 11 || r == 13) {  // the generic radices
       st.roots.resize(r);
       for (std::size_t t = 0; t < r; ++t) st.roots[t] = unit_root(t, r);
     }
@@ -235,36 +608,39 @@ ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
   }
 }
 
-void ComplexFft::forward(double* re, double* im) {
+ComplexFft::StagePasses ComplexFft::selected_passes() {
+  static const StagePasses widest = fft_variants().back().passes;  // chosen once
+  return use_avx2() ? widest : passes_baseline;                    // internal/isa.h
+}
+
+void ComplexFft::forward(double* re, double* im) { run(selected_passes(), re, im); }
+
+void ComplexFft::inverse_interleaved(double* re, double* im, double* out) {
+  run(selected_passes(), im, re, out, 1);  // the inverse: see inverse()
+}
+
+void ComplexFft::forward_with(std::string_view variant, double* re, double* im) {
+  for (const FftVariant& v : fft_variants())
+    if (v.name == variant) return run(v.passes, re, im);
+  throw std::invalid_argument("ComplexFft::forward_with: no variant " + std::string(variant));
+}
+
+void ComplexFft::run(StagePasses passes, double* re, double* im, double* interleaved,
+                     int first) {
   if (conv_) {
-    bluestein(re, im);
+    bluestein(passes, re, im);
+    if (interleaved != nullptr) interleave(re, im, n_, first, interleaved);
     return;
   }
-  double *xr = re, *xi = im, *yr = scratch_re_.data(), *yi = scratch_im_.data();
-  std::size_t s = 1;
-  for (const Stage& st : stages_) {
-    switch (st.radix) {
-      case 2: radix_pass<2>(xr, xi, yr, yi, s, st); break;
-      case 3: radix_pass<3>(xr, xi, yr, yi, s, st); break;
-      case 4: radix_pass<4>(xr, xi, yr, yi, s, st); break;
-      case 5: radix_pass<5>(xr, xi, yr, yi, s, st); break;
-      default: generic_pass(xr, xi, yr, yi, s, st); break;
-    }
-    std::swap(xr, yr);
-    std::swap(xi, yi);
-    s *= st.radix;
-  }
-  if (xr != re) {
-    std::copy(xr, xr + n_, re);
-    std::copy(xi, xi + n_, im);
-  }
+  passes(stages_.data(), stages_.size(), re, im, scratch_re_.data(), scratch_im_.data(),
+         interleaved, first);
 }
 
 // Bluestein: jk = (j² + k² − (k − j)²)/2, so X_k = c_k Σ_j (x_j c_j) conj(c_{k−j}) with the
 // chirp c_j = e^{−πi j²/n}: a convolution, done by FFTs of a smooth size M ≥ 2n − 1.
 std::size_t ComplexFft::smooth_size_at_least(std::size_t v) {
   std::size_t best = std::numeric_limits<std::size_t>::max();
-  for (std::size_t p2 = 1; p2 < 2 * v; p2 *= 2)
+  for (std::size_t p2 = 4; p2 < 2 * v; p2 *= 2)  // a multiple of 4: every pass vectorises
     for (std::size_t p3 = p2; p3 < 2 * v; p3 *= 3)
       for (std::size_t p5 = p3; p5 < 2 * v; p5 *= 5)
         if (p5 >= v) best = std::min(best, p5);
@@ -295,7 +671,7 @@ void ComplexFft::setup_bluestein() {
   work_im_.resize(m);
 }
 
-void ComplexFft::bluestein(double* re, double* im) {
+void ComplexFft::bluestein(StagePasses passes, double* re, double* im) {
   const std::size_t m = conv_->size();
   for (std::size_t j = 0; j < n_; ++j) {
     const Cx v = Cx{re[j], im[j]} * chirp_[j];
@@ -304,13 +680,13 @@ void ComplexFft::bluestein(double* re, double* im) {
   }
   std::fill(work_re_.begin() + static_cast<std::ptrdiff_t>(n_), work_re_.end(), 0.0);
   std::fill(work_im_.begin() + static_cast<std::ptrdiff_t>(n_), work_im_.end(), 0.0);
-  conv_->forward(work_re_.data(), work_im_.data());
+  conv_->run(passes, work_re_.data(), work_im_.data());
   for (std::size_t k = 0; k < m; ++k) {
     const Cx v = Cx{work_re_[k], work_im_[k]} * chirp_hat_[k];
     work_re_[k] = v.re;
     work_im_[k] = v.im;
   }
-  conv_->inverse(work_re_.data(), work_im_.data());
+  conv_->run(passes, work_im_.data(), work_re_.data());  // the inverse (fft.h)
   for (std::size_t k = 0; k < n_; ++k) {
     const Cx v = Cx{work_re_[k], work_im_[k]} * chirp_[k];
     re[k] = v.re;

@@ -1,17 +1,20 @@
 // geometry/src/internal/fft.h — the complex FFT of the geometry module (used by the Gaussian
 // filter and the harmonic analysis of closed profiles). Not part of the public API.
 //
-// A small mixed-radix Stockham FFT (radices 4, 2, 3, 5 and 7/11/13 by direct DFT) with
+// A small mixed-radix Stockham FFT (radices 8, 4, 2, 5, 9, 3 and 7/11/13 by direct DFT) with
 // Bluestein's chirp-z algorithm for sizes with a larger prime factor (prime n costs ~6 FFTs of a
 // smooth size ≥ 2n). Eigen's kissfft backend was measured first: 41 µs for a forward + inverse
 // real transform at n = 3600 and 0.13 s at the prime n = 3607 (its generic radix is O(p²)),
-// against a 30 µs budget (gaussian_filter.cpp). A plan holds its own scratch: one plan per
-// thread.
+// against a 30 µs budget (gaussian_filter.cpp). The passes are written on vectors of doubles
+// (GCC/Clang vector extensions) and compiled twice, for the package's baseline ISA and for
+// AVX2, chosen once at run time; both give the same bits (fft_variants). A plan holds its own
+// scratch: one plan per thread.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 namespace vcmm::geometry::internal {
@@ -43,6 +46,13 @@ class ComplexFft {
   /// In place: x_j = Σ_k X_k e^{+2πi jk/n} (unnormalised). Exchanging the real and imaginary
   /// parts maps z to i conj(z), and DFT(i conj z) = i conj(IDFT(z)).
   void inverse(double* re, double* im) { forward(im, re); }
+  /// inverse() with the result written interleaved, out[2j] = Re x_j, out[2j + 1] = Im x_j, by
+  /// its last pass (re and im are left as scratch): the same values, one pass less for callers
+  /// that want pairs (the real transforms of even length). out: 2n doubles, not re or im.
+  void inverse_interleaved(double* re, double* im, double* out);
+  /// forward() by the named instruction-set variant (fft_variants(); std::invalid_argument for
+  /// another name): for tests and benchmarks — every variant gives the same bits.
+  void forward_with(std::string_view variant, double* re, double* im);
 
   struct Stage {
     std::size_t radix = 0;
@@ -50,11 +60,18 @@ class ComplexFft {
     std::vector<double> tw_re, tw_im;  // [(u − 1) m + p] = ω_L^{p u}, L = radix · m
     std::vector<Cx> roots;             // ω_radix^t, generic radices only
   };
+  /// All passes of a plan on (re, im) with scratch (sr, si): one per instruction-set variant.
+  using StagePasses = void (*)(const Stage* stages, std::size_t count, double* re,
+                               double* im, double* sr, double* si, double* interleaved,
+                               int first);
 
  private:
   static std::size_t smooth_size_at_least(std::size_t v);
   void setup_bluestein();
-  void bluestein(double* re, double* im);
+  static StagePasses selected_passes();
+  void run(StagePasses passes, double* re, double* im, double* interleaved = nullptr,
+           int first = 0);
+  void bluestein(StagePasses passes, double* re, double* im);
 
   std::size_t n_;
   std::vector<Stage> stages_;
@@ -63,6 +80,18 @@ class ComplexFft {
   std::vector<Cx> chirp_, chirp_hat_;
   std::vector<double> work_re_, work_im_;
 };
+
+/// An instruction-set variant of the FFT's passes, compiled from the same source: "baseline"
+/// (the package's target ISA) and, on x86-64 CPUs that have it, "avx2" (4 doubles a vector;
+/// no FMA). Same operations in the same order, so the same bits on every machine
+/// (internal/isa.h; tests/geometry/fft_test.cpp); forward() uses the last (widest) one unless
+/// a ForceBaselineIsa is alive on the thread.
+struct FftVariant {
+  std::string_view name;
+  ComplexFft::StagePasses passes;
+};
+/// The variants this CPU can run, baseline first.
+const std::vector<FftVariant>& fft_variants();
 
 /// The plan of size n from a small per-thread cache of `capacity` sizes (most recently used
 /// first). Plans hold their own scratch, so a thread-local cache is also what makes concurrent

@@ -3,7 +3,7 @@
 // functions: written as fixed-width lane operations (a tree of max/min per block of 16) that
 // the compiler vectorises, compiled for AVX-512, AVX2 and the baseline (runtime dispatch).
 // Every lane computes exactly the scalar expression — the file is compiled with
-// -ffp-contract=off (geometry/CMakeLists.txt), else the AVX clones would fuse products into
+// -ffp-contract=off (top-level CMakeLists.txt), else the AVX clones would fuse products into
 // FMAs — so the values, and with them every decision, are the same on every machine.
 #include "internal/profile_extremes.h"
 
@@ -13,14 +13,10 @@
 #include <limits>
 #include <string>
 
+#include "vcmm/internal/simd_clones.h"
+
 namespace vcmm::geometry::internal {
 namespace {
-
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__ELF__) && !defined(__SANITIZE_ADDRESS__)
-#define VCMM_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define VCMM_SIMD_CLONES
-#endif
 
 // Eight lanes as one GCC vector (lowered to two AVX2 or four SSE2 registers where AVX-512 is
 // not available): the per-block reductions below are explicit shuffle trees, which the

@@ -5,7 +5,7 @@
 // differ in the last bit; the ziggurat tables and its slow paths (wedge test, tail) would then
 // give different normal variates on different systems. These two functions use only integer
 // operations on the bit pattern and correctly rounded +, −, ×, ÷ (no FMA contraction: the
-// including translation units are compiled with -ffp-contract=off, uncertainty/CMakeLists.txt),
+// including translation units are compiled with -ffp-contract=off, top-level CMakeLists.txt),
 // so they return the same bits everywhere.
 //
 // Algorithms and coefficients: fdlibm 5.3 (Sun Microsystems, 1993; e_exp.c and e_log.c —

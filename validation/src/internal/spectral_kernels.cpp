@@ -4,14 +4,10 @@
 #include <algorithm>
 #include <limits>
 
+#include "vcmm/internal/simd_clones.h"
+
 namespace vcmm::validation::internal {
 namespace {
-
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__ELF__) && !defined(__SANITIZE_ADDRESS__)
-#define VCMM_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define VCMM_SIMD_CLONES
-#endif
 
 // Eight vertical lanes as one GCC vector (lowered to narrower registers where AVX-512 is not
 // available); the helpers are inlined, so the ABI note about such vectors does not apply.

@@ -3,7 +3,7 @@
 // from the drawn parameters (a matrix-vector product) and the LS reference's peak-to-valley.
 // Each is compiled for AVX-512, AVX2 and the baseline (runtime dispatch) and rounds every
 // operation in the same order on all of them (no FMA: the file is compiled with
-// -ffp-contract=off, validation/CMakeLists.txt), so a trial's numbers do not depend on the
+// -ffp-contract=off, top-level CMakeLists.txt), so a trial's numbers do not depend on the
 // machine. Not part of the public API.
 #pragma once
 

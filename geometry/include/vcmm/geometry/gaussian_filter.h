@@ -55,8 +55,8 @@ struct FilteredProfile {
 /// Preconditions (InvalidInput): ≥ 8 finite points, cut-off in (0, n/2], and the profile
 /// closed: it must go once round its centre with no angular gap wider than λ_c / 2.
 /// Complexity: O(n log n) (FFT) or O(n · m) with m points under ±4 α λ_c; 3600 points at
-/// 50 UPR: ~60 µs on the FFT path, ~46 µs given the LS circle (docs/performance.md), ~3 ms
-/// on the nonuniform path.
+/// 50 UPR: ~65 µs on the FFT path, ~40 µs given the LS circle (2.1 GHz Xeon with AVX2,
+/// docs/performance.md), ~3 ms on the nonuniform path.
 FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
                                           FilterPathChoice choice = FilterPathChoice::automatic);
 

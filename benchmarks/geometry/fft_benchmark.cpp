@@ -1,0 +1,101 @@
+// Benchmarks of the geometry module's FFT and the real transforms built on it.
+//
+// What: CPU time of one forward complex FFT (geometry/src/internal/fft.h) of length n on
+// fixed pseudo-random data — n = 360, 1800 (the half-length transform of a 3600-point real
+// profile), 3600, 3607 (prime: Bluestein) — and of EquiangularTransform::values at n = 3600
+// from K + 1 harmonics (K = 50, 150, 250: the band-limited spectra of the spectral Monte
+// Carlo trial, validation/src/spectral_trial.cpp; K = 1800: the full spectrum).
+// Against: the same benchmarks before the change (docs/performance.md, "FFT").
+#include <benchmark/benchmark.h>
+
+#include <cstddef>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "../../geometry/src/internal/fft.h"
+#include "vcmm/geometry/equiangular_transform.h"
+
+namespace {
+
+namespace g = vcmm::geometry;
+
+std::vector<double> random_values(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> v(n);
+  for (double& x : v) x = u(rng);
+  return v;
+}
+
+void BM_ComplexFft(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  g::internal::ComplexFft fft(n);
+  const std::vector<double> re0 = random_values(n, 1), im0 = random_values(n, 2);
+  std::vector<double> re = re0, im = im0;
+  std::size_t calls = 0;
+  for (auto _ : state) {
+    // Transforming the previous output again keeps the data live; the values stay finite
+    // (they grow by √n per call, reset every 64 calls).
+    fft.forward(re.data(), im.data());
+    benchmark::DoNotOptimize(re.data());
+    benchmark::ClobberMemory();
+    if (++calls % 64 == 0) {
+      re = re0;
+      im = im0;
+    }
+  }
+}
+BENCHMARK(BM_ComplexFft)->Arg(360)->Arg(1800)->Arg(3600)->Arg(3607)->Unit(benchmark::kMicrosecond);
+
+// The same with a named instruction-set variant (0: baseline, 1: avx2 where the CPU has it).
+void BM_ComplexFftVariant(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto& variants = g::internal::fft_variants();
+  const auto v = static_cast<std::size_t>(state.range(1));
+  if (v >= variants.size()) {
+    state.SkipWithError("variant not available on this CPU");
+    return;
+  }
+  state.SetLabel(std::string(variants[v].name));
+  g::internal::ComplexFft fft(n);
+  const std::vector<double> re0 = random_values(n, 1), im0 = random_values(n, 2);
+  std::vector<double> re = re0, im = im0;
+  std::size_t calls = 0;
+  for (auto _ : state) {
+    fft.forward_with(variants[v].name, re.data(), im.data());
+    benchmark::DoNotOptimize(re.data());
+    benchmark::ClobberMemory();
+    if (++calls % 64 == 0) {
+      re = re0;
+      im = im0;
+    }
+  }
+}
+BENCHMARK(BM_ComplexFftVariant)
+    ->ArgsProduct({{360, 1800, 3600}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_EquiangularValues(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto k = static_cast<std::size_t>(state.range(1));
+  g::EquiangularTransform transform(n);
+  const std::vector<double> a = random_values(k + 1, 3), b = random_values(k + 1, 4);
+  std::vector<double> out(n);
+  for (auto _ : state) {
+    transform.values(a, b, out);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_EquiangularValues)
+    ->Args({3600, 0})
+    ->Args({3600, 5})
+    ->Args({3600, 20})
+    ->Args({3600, 50})
+    ->Args({3600, 150})
+    ->Args({3600, 250})
+    ->Args({3600, 1800})
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace

@@ -1,0 +1,53 @@
+// geometry/src/internal/isa.h — the instruction-set choice of the geometry module's vectorised
+// kernels (the FFT passes, internal/fft.cpp; the Gaussian filter's first pass,
+// gaussian_filter.cpp). Each kernel is compiled from one source twice: for the package's
+// baseline ISA and, on x86-64 with GCC or Clang, with __attribute__((target("avx2"))). Both
+// run the same operations in the same order on every element (no reductions; no FMA: AVX2
+// does not enable it and those files are compiled with -ffp-contract=off), so results are
+// bit-identical whichever runs — MPI ranks on different machines agree. The AVX2 variant runs
+// where the CPU has it, unless a ForceBaselineIsa is alive on the calling thread (tests compare
+// the variants end to end). Not part of the public API.
+#pragma once
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define VCMM_GEOMETRY_X86 1
+#else
+#define VCMM_GEOMETRY_X86 0
+#endif
+
+namespace vcmm::geometry::internal {
+
+/// True when this CPU runs AVX2 (checked once).
+inline bool cpu_has_avx2() {
+#if VCMM_GEOMETRY_X86
+  static const bool has = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
+  return has;
+#else
+  return false;
+#endif
+}
+
+inline bool& baseline_isa_forced() {
+  thread_local bool forced = false;
+  return forced;
+}
+
+/// Whether the kernels called now on this thread take their AVX2 variant.
+inline bool use_avx2() { return cpu_has_avx2() && !baseline_isa_forced(); }
+
+/// While alive, the kernels on this thread take their baseline variant.
+class ForceBaselineIsa {
+ public:
+  ForceBaselineIsa() : previous_(baseline_isa_forced()) { baseline_isa_forced() = true; }
+  ~ForceBaselineIsa() { baseline_isa_forced() = previous_; }
+  ForceBaselineIsa(const ForceBaselineIsa&) = delete;
+  ForceBaselineIsa& operator=(const ForceBaselineIsa&) = delete;
+
+ private:
+  bool previous_;
+};
+
+}  // namespace vcmm::geometry::internal

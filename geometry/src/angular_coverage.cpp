@@ -24,6 +24,8 @@
 // the tests, the general path runs.
 #include "vcmm/geometry/angular_coverage.h"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cstddef>
 #include <cmath>
@@ -40,70 +42,125 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 /// Candidate margin on t = tan(step) (see the top): 2⁻⁴⁶ ≈ 1.4e-14.
 constexpr double kTanMargin = 0x1.0p-46;
 
+// Pass 1 runs on Eigen's SIMD packets (2 doubles with SSE2; as in least_squares.cpp): the
+// compiler does not vectorise the division and the reductions by itself.
+namespace simd = Eigen::internal;
+using Packet = simd::packet_traits<double>::type;
+constexpr std::size_t kLanes = simd::packet_traits<double>::size;
+
+/// Per-thread scratch arrays, kept between calls (no allocation per call).
+struct WalkScratch {
+  std::vector<double> x, y, t;       // directions p_i − c (x, y: n + 1, closing copy) and t
+  std::vector<std::size_t> candidate;  // steps that can be the largest gap, ascending
+};
+
 /// The fast path described at the top; nullopt when the walk does not qualify.
 std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> points,
                                                        Point2 center) {
   const std::size_t n = points.size();
   if (n < 3) return std::nullopt;
-  const auto dir = [&](std::size_t i) {
-    return Point2{points[i].x - center.x, points[i].y - center.y};
-  };
-  // Pass 1: every step certain, the same turn, t < 1; t of each step (kept for pass 2); the
-  // crossings of θ = π (the upper half y ≥ 0 to the lower y < 0, or back).
-  thread_local std::vector<double> tan_step;  // reused: no allocation per call
-  tan_step.resize(n);
-  bool ok = true;
-  std::size_t positive = 0, up_to_down = 0, down_to_up = 0, last_down = 0, last_up = 0;
-  double t_max = 0.0;
-  const auto step = [&](std::size_t i, Point2 a, Point2 b) {
-    const double cross = a.x * b.y - a.y * b.x, dot = a.x * b.x + a.y * b.y;
-    const double norms = (a.x * a.x + a.y * a.y) * (b.x * b.x + b.y * b.y);
-    const double t = std::fabs(cross) / dot;
-    ok &= (cross * cross > 1e-18 * norms) & (t < 1.0) & (dot > 0.0);  // false on NaN
-    positive += cross > 0.0;
-    const bool down = (a.y >= 0.0) & (b.y < 0.0), up = (a.y < 0.0) & (b.y >= 0.0);
-    up_to_down += down;
-    down_to_up += up;
-    last_down = down ? i : last_down;
-    last_up = up ? i : last_up;
-    tan_step[i] = t;
-    t_max = std::max(t_max, t);
-  };
-  for (std::size_t i = 0; i + 1 < n; ++i) step(i, dir(i), dir(i + 1));
-  step(n - 1, dir(n - 1), dir(0));
-  const bool ccw = positive == n;
+  thread_local WalkScratch ws;
+  ws.x.resize(n + 1);
+  ws.y.resize(n + 1);
+  ws.t.resize(n);
+  double* x = ws.x.data();
+  double* y = ws.y.data();
+  double* t = ws.t.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = points[i].x - center.x;
+    y[i] = points[i].y - center.y;
+  }
+  x[n] = x[0];
+  y[n] = y[0];
+  // Pass 1, step i from direction a = d_i to b = d_{i+1}: every step certain (t in (1e-9, 1):
+  // then |a × b| > 7e-10 |a||b|, far above its rounding, and the angle is in (7e-10, π/4)),
+  // no underflow (a · b > 2⁻⁹⁰⁰), the same turn; t of each step; the crossings of θ = π
+  // (upper half y ≥ 0 to lower y < 0, or back) and the last step where each happens.
+  const Packet zero = simd::pset1<Packet>(0.0), one = simd::pset1<Packet>(1.0);
+  const Packet t_min = simd::pset1<Packet>(1e-9), dot_min = simd::pset1<Packet>(0x1.0p-900);
+  const Packet all = simd::ptrue(zero);
+  Packet bad = zero, negative = zero, positive = zero, downs = zero, ups = zero;
+  Packet last_down = simd::pset1<Packet>(-1.0), last_up = last_down, t_max = zero;
+  Packet index = simd::plset<Packet>(0.0);
+  const Packet lanes = simd::pset1<Packet>(static_cast<double>(kLanes));
+  const std::size_t packed = n - n % kLanes;
+  for (std::size_t i = 0; i < packed; i += kLanes) {
+    const Packet ax = simd::ploadu<Packet>(x + i), ay = simd::ploadu<Packet>(y + i);
+    const Packet bx = simd::ploadu<Packet>(x + i + 1), by = simd::ploadu<Packet>(y + i + 1);
+    const Packet cross = simd::psub(simd::pmul(ax, by), simd::pmul(ay, bx));
+    const Packet dot = simd::padd(simd::pmul(ax, bx), simd::pmul(ay, by));
+    const Packet ti = simd::pdiv(simd::pabs(cross), dot);
+    simd::pstoreu(t + i, ti);
+    const Packet good = simd::pand(simd::pand(simd::pcmp_lt(t_min, ti), simd::pcmp_lt(ti, one)),
+                                   simd::pcmp_lt(dot_min, dot));  // false on NaN
+    bad = simd::por(bad, simd::pandnot(all, good));
+    negative = simd::por(negative, simd::pcmp_lt(cross, zero));
+    positive = simd::por(positive, simd::pcmp_lt(zero, cross));
+    const Packet down = simd::pand(simd::pcmp_le(zero, ay), simd::pcmp_lt(by, zero));
+    const Packet up = simd::pand(simd::pcmp_lt(ay, zero), simd::pcmp_le(zero, by));
+    downs = simd::padd(downs, simd::pand(down, one));
+    ups = simd::padd(ups, simd::pand(up, one));
+    last_down = simd::pselect(down, index, last_down);
+    last_up = simd::pselect(up, index, last_up);
+    t_max = simd::pmax(t_max, ti);
+    index = simd::padd(index, lanes);
+  }
+  bool ok = !simd::predux_any(bad);
+  bool any_negative = simd::predux_any(negative), any_positive = simd::predux_any(positive);
+  double down_count = simd::predux(downs), up_count = simd::predux(ups);
+  double down_at = simd::predux_max(last_down), up_at = simd::predux_max(last_up);
+  double tm = simd::predux_max(t_max);
+  for (std::size_t i = packed; i < n; ++i) {
+    const double cross = x[i] * y[i + 1] - y[i] * x[i + 1];
+    const double dot = x[i] * x[i + 1] + y[i] * y[i + 1];
+    const double ti = std::fabs(cross) / dot;
+    t[i] = ti;
+    ok = ok && ti > 1e-9 && ti < 1.0 && dot > 0x1.0p-900;
+    any_negative = any_negative || cross < 0.0;
+    any_positive = any_positive || cross > 0.0;
+    if (y[i] >= 0.0 && y[i + 1] < 0.0) {
+      down_count += 1.0;
+      down_at = static_cast<double>(i);
+    }
+    if (y[i] < 0.0 && y[i + 1] >= 0.0) {
+      up_count += 1.0;
+      up_at = static_cast<double>(i);
+    }
+    tm = std::max(tm, ti);
+  }
   // Once round: one crossing of θ = ±π in the sense of the walk (a counter-clockwise walk
   // goes from the upper half to the lower only there, a clockwise one the other way).
-  if (!ok || !(ccw || positive == 0) || (ccw ? up_to_down : down_to_up) != 1)
+  const bool ccw = !any_negative;
+  if (!ok || (any_negative && any_positive) || (ccw ? down_count : up_count) != 1.0)
     return std::nullopt;
-  // Pass 2: how many candidates; beyond n / 4 (many steps equal to the last few ulps, e.g. an
-  // exact equiangular ring about its own centre) the general path's n atan2 cost less.
-  const double threshold = t_max - kTanMargin;
-  std::size_t count = 0;
-  for (std::size_t s = 0; s < n; ++s) count += tan_step[s] >= threshold;
-  if (count > n / 4) return std::nullopt;
+  // Pass 2: the candidates; beyond n / 4 of them (many steps equal to the last few ulps, e.g.
+  // an exact equiangular ring about its own centre) the general path's n atan2 cost less.
+  const double threshold = tm - kTanMargin;
+  ws.candidate.clear();
+  for (std::size_t s = 0; s < n; ++s) {
+    if (t[s] < threshold) continue;
+    if (ws.candidate.size() == n / 4) return std::nullopt;
+    ws.candidate.push_back(s);
+  }
   // Step s joins points s and s + 1; in increasing angle it runs from `from(s)` to `to(s)`.
   // The wrap step (across θ = ±π, from the upper half into the lower in increasing angle) is
   // where the general path's order starts and ends.
   const auto next = [n](std::size_t i) { return i + 1 == n ? 0 : i + 1; };
   const auto from = [&](std::size_t s) { return ccw ? s : next(s); };
   const auto to = [&](std::size_t s) { return ccw ? next(s) : s; };
-  const std::size_t wrap = ccw ? last_down : last_up;
-  const auto angle = [&](std::size_t i) {
-    const Point2 d = dir(i);
-    return std::atan2(d.y, d.x);
-  };
+  const auto wrap = static_cast<std::size_t>(ccw ? down_at : up_at);
+  const auto angle = [&](std::size_t i) { return std::atan2(y[i], x[i]); };
   // Pass 3, the general path's scan: the wrap gap first, then the candidate gaps in
-  // increasing angle (input order from the wrap, backwards for a clockwise walk), strict ">".
+  // increasing angle, strict ">". Increasing angle is input order from the wrap onwards,
+  // backwards for a clockwise walk.
   AngularCoverage c;
   const double lo = angle(to(wrap)), hi = angle(from(wrap));
   c.largest_gap_rad = lo + kTwoPi - hi;
   c.gap_start_rad = hi;
   c.gap_start_index = from(wrap);
   c.gap_end_index = to(wrap);
-  for (std::size_t r = 1, s = wrap; r < n; ++r) {
-    s = ccw ? next(s) : (s == 0 ? n - 1 : s - 1);
-    if (tan_step[s] < threshold) continue;
+  const auto consider = [&](std::size_t s) {
+    if (s == wrap) return;
     const double a = angle(from(s)), b = angle(to(s));
     if (b - a > c.largest_gap_rad) {
       c.largest_gap_rad = b - a;
@@ -111,6 +168,16 @@ std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> 
       c.gap_start_index = from(s);
       c.gap_end_index = to(s);
     }
+  };
+  const std::vector<std::size_t>& k = ws.candidate;
+  const auto split = static_cast<std::size_t>(  // first candidate after the wrap
+      std::upper_bound(k.begin(), k.end(), wrap) - k.begin());
+  if (ccw) {
+    for (std::size_t j = split; j < k.size(); ++j) consider(k[j]);
+    for (std::size_t j = 0; j < split; ++j) consider(k[j]);
+  } else {
+    for (std::size_t j = split; j-- > 0;) consider(k[j]);
+    for (std::size_t j = k.size(); j-- > split;) consider(k[j]);
   }
   c.covered_rad = kTwoPi - c.largest_gap_rad;
   c.closed = c.largest_gap_rad <= 3.0 * kTwoPi / static_cast<double>(n);

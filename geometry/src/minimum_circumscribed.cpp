@@ -415,7 +415,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
     for (std::size_t i : on_circle)
       if (i < c && points[i] == points[c]) c = i;
   // 5. Roundness parameters: RONq from the shared evaluator; RONt without cancellation.
-  mc.ron = roundness_parameters(points, mc.center, mc.radius);
+  mc.ron = internal::roundness_parameters_of_valid(points, mc.center, mc.radius);
   // In the filter's scaled units: (R*² − ρ²)s² / ((R* + ρ)s), then back by s⁻¹ (exact).
   const double rho_s = std::sqrt(nearest_d2);
   const double gap_s = internal::exact_power_gap(circle, points[nearest]);  // ≥ 0 exactly

@@ -23,6 +23,7 @@
 // more than n/4 steps tie (an exactly equiangular ring about its own centre) or a step fails
 // the tests, the general path runs.
 #include "vcmm/geometry/angular_coverage.h"
+#include "internal/angular_walk.h"
 
 #include <Eigen/Core>
 
@@ -39,6 +40,7 @@ namespace vcmm::geometry {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kQuarterTurn = 0.25 * std::numbers::pi;
 /// Candidate margin on t = tan(step) (see the top): 2⁻⁴⁶ ≈ 1.4e-14.
 constexpr double kTanMargin = 0x1.0p-46;
 
@@ -54,12 +56,21 @@ struct WalkScratch {
   std::vector<std::size_t> candidate;  // steps that can be the largest gap, ascending
 };
 
-/// The fast path described at the top; nullopt when the walk does not qualify.
-std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> points,
-                                                       Point2 center) {
+thread_local WalkScratch scratch;
+
+/// A closed walk once round the centre (pass 1 of the fast path, described at the top).
+struct Walk {
+  bool ccw = true;         ///< counter-clockwise in input order
+  double t_max = 0.0;      ///< tan of the longest step
+  std::size_t wrap = 0;    ///< the step across θ = ±π (in input order: from wrap to wrap + 1)
+};
+
+/// Pass 1: the walk, its directions (ws.x, ws.y) and step tangents (ws.t); nullopt when
+/// the input does not qualify.
+std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
+                                 WalkScratch& ws) {
   const std::size_t n = points.size();
   if (n < 3) return std::nullopt;
-  thread_local WalkScratch ws;
   ws.x.resize(n + 1);
   ws.y.resize(n + 1);
   ws.t.resize(n);
@@ -133,6 +144,22 @@ std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> 
   const bool ccw = !any_negative;
   if (!ok || (any_negative && any_positive) || (ccw ? down_count : up_count) != 1.0)
     return std::nullopt;
+  return Walk{ccw, tm, static_cast<std::size_t>(ccw ? down_at : up_at)};
+}
+
+/// The fast path described at the top; nullopt when the walk does not qualify.
+std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> points,
+                                                       Point2 center) {
+  WalkScratch& ws = scratch;
+  const std::optional<Walk> walk = angular_walk(points, center, ws);
+  if (!walk) return std::nullopt;
+  const std::size_t n = points.size();
+  const bool ccw = walk->ccw;
+  const double tm = walk->t_max;
+  const std::size_t wrap = walk->wrap;
+  const double* x = ws.x.data();
+  const double* y = ws.y.data();
+  const double* t = ws.t.data();
   // Pass 2: the candidates; beyond n / 4 of them (many steps equal to the last few ulps, e.g.
   // an exact equiangular ring about its own centre) the general path's n atan2 cost less.
   const double threshold = tm - kTanMargin;
@@ -148,7 +175,6 @@ std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> 
   const auto next = [n](std::size_t i) { return i + 1 == n ? 0 : i + 1; };
   const auto from = [&](std::size_t s) { return ccw ? s : next(s); };
   const auto to = [&](std::size_t s) { return ccw ? next(s) : s; };
-  const auto wrap = static_cast<std::size_t>(ccw ? down_at : up_at);
   const auto angle = [&](std::size_t i) { return std::atan2(y[i], x[i]); };
   // Pass 3, the general path's scan: the wrap gap first, then the candidate gaps in
   // increasing angle, strict ">". Increasing angle is input order from the wrap onwards,
@@ -185,6 +211,13 @@ std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> 
 }
 
 }  // namespace
+
+bool internal::has_angular_steps_below(std::span<const Point2> points, Point2 center,
+                                       double limit_rad) {
+  const std::optional<Walk> walk = angular_walk(points, center, scratch);
+  // t_max < tan(limit) with both sides good to a few ulps: a margin of 1e-6 relative.
+  return walk && walk->t_max < (1.0 - 1e-6) * std::tan(std::min(limit_rad, kQuarterTurn));
+}
 
 AngularCoverage angular_coverage(std::span<const Point2> points, Point2 center) {
   const std::size_t n = points.size();

@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -62,13 +63,13 @@ thread_local WalkScratch scratch;
 struct Walk {
   bool ccw = true;         ///< counter-clockwise in input order
   double t_max = 0.0;      ///< tan of the longest step
-  std::size_t wrap = 0;    ///< the step across θ = ±π (in input order: from wrap to wrap + 1)
+  std::size_t wrap = 0;    ///< the step across θ = ±π (from wrap to wrap + 1), if asked for
 };
 
 /// Pass 1: the walk, its directions (ws.x, ws.y) and step tangents (ws.t); nullopt when
 /// the input does not qualify.
 std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
-                                 WalkScratch& ws) {
+                                 WalkScratch& ws, bool find_wrap = true) {
   const std::size_t n = points.size();
   if (n < 3) return std::nullopt;
   ws.x.resize(n + 1);
@@ -83,17 +84,13 @@ std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
   }
   x[n] = x[0];
   y[n] = y[0];
-  // Pass 1, step i from direction a = d_i to b = d_{i+1}: every step certain (t in (1e-9, 1):
-  // then |a × b| > 7e-10 |a||b|, far above its rounding, and the angle is in (7e-10, π/4)),
-  // no underflow (a · b > 2⁻⁹⁰⁰), the same turn; t of each step; the crossings of θ = π
-  // (upper half y ≥ 0 to lower y < 0, or back) and the last step where each happens.
-  const Packet zero = simd::pset1<Packet>(0.0), one = simd::pset1<Packet>(1.0);
-  const Packet t_min = simd::pset1<Packet>(1e-9), dot_min = simd::pset1<Packet>(0x1.0p-900);
-  const Packet all = simd::ptrue(zero);
-  Packet bad = zero, negative = zero, positive = zero, downs = zero, ups = zero;
-  Packet last_down = simd::pset1<Packet>(-1.0), last_up = last_down, t_max = zero;
-  Packet index = simd::plset<Packet>(0.0);
-  const Packet lanes = simd::pset1<Packet>(static_cast<double>(kLanes));
+  // Pass 1, step i from direction a = d_i to b = d_{i+1}, t_i = |a × b| / (a · b): every
+  // step certain (t in (1e-9, 1): then |a × b| > 7e-10 |a||b|, far above its rounding, and
+  // the angle is in (7e-10, π/4)), no underflow (a · b > 2⁻⁹⁰⁰), one sign of a × b; kept as
+  // extremes and a sum (NaN from non-finite input propagates into the sum).
+  const Packet inf = simd::pset1<Packet>(std::numeric_limits<double>::infinity());
+  Packet t_max = simd::pset1<Packet>(0.0), t_min = inf, dot_min = inf, t_sum = t_max;
+  Packet cross_min = inf, cross_max = simd::pnegate(inf);
   const std::size_t packed = n - n % kLanes;
   for (std::size_t i = 0; i < packed; i += kLanes) {
     const Packet ax = simd::ploadu<Packet>(x + i), ay = simd::ploadu<Packet>(y + i);
@@ -102,49 +99,42 @@ std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
     const Packet dot = simd::padd(simd::pmul(ax, bx), simd::pmul(ay, by));
     const Packet ti = simd::pdiv(simd::pabs(cross), dot);
     simd::pstoreu(t + i, ti);
-    const Packet good = simd::pand(simd::pand(simd::pcmp_lt(t_min, ti), simd::pcmp_lt(ti, one)),
-                                   simd::pcmp_lt(dot_min, dot));  // false on NaN
-    bad = simd::por(bad, simd::pandnot(all, good));
-    negative = simd::por(negative, simd::pcmp_lt(cross, zero));
-    positive = simd::por(positive, simd::pcmp_lt(zero, cross));
-    const Packet down = simd::pand(simd::pcmp_le(zero, ay), simd::pcmp_lt(by, zero));
-    const Packet up = simd::pand(simd::pcmp_lt(ay, zero), simd::pcmp_le(zero, by));
-    downs = simd::padd(downs, simd::pand(down, one));
-    ups = simd::padd(ups, simd::pand(up, one));
-    last_down = simd::pselect(down, index, last_down);
-    last_up = simd::pselect(up, index, last_up);
     t_max = simd::pmax(t_max, ti);
-    index = simd::padd(index, lanes);
+    t_min = simd::pmin(t_min, ti);
+    t_sum = simd::padd(t_sum, ti);
+    dot_min = simd::pmin(dot_min, dot);
+    cross_min = simd::pmin(cross_min, cross);
+    cross_max = simd::pmax(cross_max, cross);
   }
-  bool ok = !simd::predux_any(bad);
-  bool any_negative = simd::predux_any(negative), any_positive = simd::predux_any(positive);
-  double down_count = simd::predux(downs), up_count = simd::predux(ups);
-  double down_at = simd::predux_max(last_down), up_at = simd::predux_max(last_up);
-  double tm = simd::predux_max(t_max);
+  double tm = simd::predux_max(t_max), tn = simd::predux_min(t_min), ts = simd::predux(t_sum);
+  double dn = simd::predux_min(dot_min);
+  double cn = simd::predux_min(cross_min), cm = simd::predux_max(cross_max);
   for (std::size_t i = packed; i < n; ++i) {
     const double cross = x[i] * y[i + 1] - y[i] * x[i + 1];
     const double dot = x[i] * x[i + 1] + y[i] * y[i + 1];
     const double ti = std::fabs(cross) / dot;
     t[i] = ti;
-    ok = ok && ti > 1e-9 && ti < 1.0 && dot > 0x1.0p-900;
-    any_negative = any_negative || cross < 0.0;
-    any_positive = any_positive || cross > 0.0;
-    if (y[i] >= 0.0 && y[i + 1] < 0.0) {
-      down_count += 1.0;
-      down_at = static_cast<double>(i);
-    }
-    if (y[i] < 0.0 && y[i + 1] >= 0.0) {
-      up_count += 1.0;
-      up_at = static_cast<double>(i);
-    }
     tm = std::max(tm, ti);
+    tn = std::min(tn, ti);
+    ts += ti;
+    dn = std::min(dn, dot);
+    cn = std::min(cn, cross);
+    cm = std::max(cm, cross);
   }
-  // Once round: one crossing of θ = ±π in the sense of the walk (a counter-clockwise walk
-  // goes from the upper half to the lower only there, a clockwise one the other way).
-  const bool ccw = !any_negative;
-  if (!ok || (any_negative && any_positive) || (ccw ? down_count : up_count) != 1.0)
+  // Once round: all steps turn one way, so the angles θ_i add up to 2πk, k ≥ 1; θ ≤ tan θ
+  // makes Σ t < 4π (with a margin far above the sum's rounding) force k = 1.
+  const bool ccw = cn > 0.0;
+  if (!(tn > 1e-9 && tm < 1.0 && dn > 0x1.0p-900 && (ccw || cm < 0.0) &&
+        ts < 2.0 * kTwoPi * (1.0 - 1e-6)))  // false on NaN
     return std::nullopt;
-  return Walk{ccw, tm, static_cast<std::size_t>(ccw ? down_at : up_at)};
+  if (!find_wrap) return Walk{ccw, tm, 0};
+  // The wrap: in increasing angle, the one step from the upper half (atan2 in [+0, π]: sign
+  // bit of y clear) into the lower one (sign bit set, −0 included: atan2(−0, x < 0) = −π).
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool a_upper = !std::signbit(y[i]), b_upper = !std::signbit(y[i + 1]);
+    if (ccw ? (a_upper && !b_upper) : (!a_upper && b_upper)) return Walk{ccw, tm, i};
+  }
+  return std::nullopt;  // not reached: a walk once round crosses θ = ±π once
 }
 
 /// The fast path described at the top; nullopt when the walk does not qualify.
@@ -214,7 +204,7 @@ std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> 
 
 bool internal::has_angular_steps_below(std::span<const Point2> points, Point2 center,
                                        double limit_rad) {
-  const std::optional<Walk> walk = angular_walk(points, center, scratch);
+  const std::optional<Walk> walk = angular_walk(points, center, scratch, /*find_wrap=*/false);
   // t_max < tan(limit) with both sides good to a few ulps: a margin of 1e-6 relative.
   return walk && walk->t_max < (1.0 - 1e-6) * std::tan(std::min(limit_rad, kQuarterTurn));
 }

@@ -110,6 +110,33 @@ TEST(AngularCoverage, ScanOrderFastPathEqualsGeneralPathBitForBit) {
   }
 }
 
+// Points on the axis through the centre with y = −0 (atan2(−0, x < 0) = −π: the smallest
+// angle, not the largest), in scan order and shuffled, either way round.
+TEST(AngularCoverage, NegativeZeroOnTheAxisKeepsItsAtan2Side) {
+  for (double sense : {1.0, -1.0}) {
+    std::vector<Point2> p;
+    for (int i = 0; i < 64; ++i) {
+      const double t = sense * i * kPi / 32.0;
+      p.push_back({std::cos(t), std::sin(t)});
+    }
+    p[32] = {-1.0, -0.0};  // θ = π
+    p[0] = {1.0, -0.0};    // θ = 0
+    const AngularCoverage a = angular_coverage(p, {0.0, 0.0});
+    std::vector<Point2> q(p.rbegin(), p.rend());  // the other way round
+    std::rotate(q.begin(), q.begin() + 5, q.end());
+    std::mt19937_64 rng(5);
+    std::vector<Point2> r = p;
+    std::shuffle(r.begin(), r.end(), rng);
+    for (const auto& other : {q, r}) {
+      const AngularCoverage b = angular_coverage(other, {0.0, 0.0});
+      EXPECT_EQ(a.largest_gap_rad, b.largest_gap_rad) << sense;
+      EXPECT_EQ(a.gap_start_rad, b.gap_start_rad) << sense;
+      EXPECT_EQ(p[a.gap_start_index], other[b.gap_start_index]) << sense;
+      EXPECT_EQ(p[a.gap_end_index], other[b.gap_end_index]) << sense;
+    }
+  }
+}
+
 TEST(AngularCoverage, PointsAtTheCentreAreLeftOutAndBadInputRefused) {
   std::vector<Point2> p = {{1, 0}, {0, 0}, {-1, 0}, {0, 1}};
   const AngularCoverage c = angular_coverage(p, {0, 0});

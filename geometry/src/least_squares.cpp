@@ -98,6 +98,7 @@ struct PassSums {
 /// Extremes and spread of the residuals about the final circle.
 struct ResidualSummary {
   double r_max = 0.0, r_min = 0.0;  // extreme distances
+  std::size_t max_index = 0, min_index = 0;  // their first positions
   double sum_ee = 0.0;              // Σ e², e = r − R
 };
 
@@ -397,28 +398,56 @@ class Fitter {
     Packet rmax = simd::pset1<Packet>(-std::numeric_limits<double>::infinity());
     Packet rmin = simd::pset1<Packet>(std::numeric_limits<double>::infinity());
     Packet see = simd::pset1<Packet>(0.0);
+    // Per lane, the first index of its extremes (strict comparisons keep the first).
+    Packet index = simd::plset<Packet>(0.0), imax = index, imin = index;
+    const Packet lanes = simd::pset1<Packet>(static_cast<double>(kLanes));
     for (Eigen::Index i = 0; i < packed_; i += kLanes) {
       const Packet r = simd::ploadu<Packet>(r_ + i);
       const Packet e = simd::psub(simd::psub(r, pr0), pmd);
-      rmax = simd::pmax(rmax, r);
-      rmin = simd::pmin(rmin, r);
+      const Packet above = simd::pcmp_lt(rmax, r), below = simd::pcmp_lt(r, rmin);
+      rmax = simd::pselect(above, r, rmax);
+      imax = simd::pselect(above, index, imax);
+      rmin = simd::pselect(below, r, rmin);
+      imin = simd::pselect(below, index, imin);
       see = simd::pmadd(e, e, see);
+      index = simd::padd(index, lanes);
     }
     ResidualSummary out;
-    out.r_max = simd::predux_max(rmax);
-    out.r_min = simd::predux_min(rmin);
+    out.r_max = -std::numeric_limits<double>::infinity();
+    out.r_min = std::numeric_limits<double>::infinity();
+    alignas(64) double vmax[kLanes], vmin[kLanes], jmax[kLanes], jmin[kLanes];
+    simd::pstoreu(vmax, rmax);
+    simd::pstoreu(vmin, rmin);
+    simd::pstoreu(jmax, imax);
+    simd::pstoreu(jmin, imin);
+    double at_max = 0.0, at_min = 0.0;
+    for (Eigen::Index k = 0; k < (packed_ > 0 ? kLanes : 0); ++k) {  // lowest index on ties
+      if (vmax[k] > out.r_max || (vmax[k] == out.r_max && jmax[k] < at_max)) {
+        out.r_max = vmax[k];
+        at_max = jmax[k];
+      }
+      if (vmin[k] < out.r_min || (vmin[k] == out.r_min && jmin[k] < at_min)) {
+        out.r_min = vmin[k];
+        at_min = jmin[k];
+      }
+    }
+    out.max_index = static_cast<std::size_t>(at_max);
+    out.min_index = static_cast<std::size_t>(at_min);
     out.sum_ee = simd::predux(see);
     for (Eigen::Index i = packed_; i < n_; ++i) {
       const double e = (r_[i] - r0) - mean_d;
-      out.r_max = std::max(out.r_max, r_[i]);
-      out.r_min = std::min(out.r_min, r_[i]);
+      if (r_[i] > out.r_max) {
+        out.r_max = r_[i];
+        out.max_index = static_cast<std::size_t>(i);
+      }
+      if (r_[i] < out.r_min) {
+        out.r_min = r_[i];
+        out.min_index = static_cast<std::size_t>(i);
+      }
       out.sum_ee += e * e;
     }
     return out;
   }
-
-  /// First index i with r_[i] == v (v is a value of r_).
-  std::size_t first_index_of(double v) const { return first_index(r_, n_, v); }
 
   Eigen::Index size() const { return n_; }
   Point2 shift() const { return shift_; }
@@ -556,7 +585,7 @@ LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> po
   // Residuals about (centre, R): e_i = (r_i − R₀) − d̄. Contacts: the first positions of the
   // extreme distances (lowest index wins ties).
   const ResidualSummary sum = fit.summarize(r0, mean_d);
-  out.contacts = {fit.first_index_of(sum.r_max), fit.first_index_of(sum.r_min)};
+  out.contacts = {sum.max_index, sum.min_index};
   const double emax = (sum.r_max - r0) - mean_d;
   const double emin = (sum.r_min - r0) - mean_d;
   out.ron.ront = emax - emin;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "support/test_profiles.h"
+#include "vcmm/geometry/angular_coverage.h"
 #include "vcmm/geometry/certificate.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
@@ -102,6 +103,15 @@ void BM_GaussianFilterSharedLs(benchmark::State& state) {
 BENCHMARK(BM_GaussianFilterSharedLs)->Apply(sizes);
 
 // The whole evaluation of the target: filter (50 UPR) + LS + MZ + MI + MC.
+/// The coverage evaluate_roundness reports: a scan in angular order about its LS centre (the
+/// fast path: atan2 only for the steps that can be the largest gap).
+void BM_AngularCoverage(benchmark::State& state) {
+  const auto& p = profile(static_cast<std::size_t>(state.range(0)));
+  const g::Point2 c = g::least_squares_circle(p).center;
+  for (auto _ : state) benchmark::DoNotOptimize(g::angular_coverage(p, c));
+}
+BENCHMARK(BM_AngularCoverage)->Apply(sizes);
+
 void BM_AllFourCirclesFiltered(benchmark::State& state) {
   const auto& p = profile(static_cast<std::size_t>(state.range(0)));
   g::RoundnessRequest r;

@@ -77,6 +77,10 @@
 #include "internal/least_squares_on_rays.h"
 #include "internal/prevalidated.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace vcmm::geometry {
 namespace {
 
@@ -94,6 +98,7 @@ struct PassSums {
 /// Extremes and spread of the residuals about the final circle.
 struct ResidualSummary {
   double r_max = 0.0, r_min = 0.0;  // extreme distances
+  std::size_t max_index = 0, min_index = 0;  // their first positions
   double sum_ee = 0.0;              // Σ e², e = r − R
 };
 
@@ -122,6 +127,72 @@ std::size_t first_index(const double* a, Eigen::Index n, double v) {
   return static_cast<std::size_t>(i);
 }
 
+/// Spans of the data (mm) the fit handles: the Kåsa start forms products up to the 5th power
+/// of the local coordinates (cyy·cxz), sums over up to ~1e8 points add 8 decades, and the
+/// results must stay inside the normal double range (1e±308): 1e-50 ≤ s ≤ 1e50 leaves a margin
+/// of ~50 decades. Beyond, the moments overflow or underflow and Gauss-Newton would call the
+/// data straight; a span outside is a wrong unit or corrupt data, not a roundness profile.
+constexpr double kMinSpanMm = 1e-50;
+constexpr double kMaxSpanMm = 1e50;
+
+/// Extremes of the raw coordinates.
+struct Extent {
+  double x0, x1, y0, y1;
+};
+
+/// The extent of the points: interleaved x, y doubles, a packet holds kLanes / 2 whole
+/// points, so lane-wise extremes are per coordinate (even lanes x, odd lanes y); two packets
+/// an iteration (independent chains). Used where the fused pass of Fitter is not compiled.
+[[maybe_unused]] Extent extent_of(std::span<const Point2> points) {
+  double x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
+  std::size_t i = 0;
+  if constexpr (kLanes % 2 == 0) {
+    static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
+    const double* p = reinterpret_cast<const double*>(points.data());
+    constexpr std::size_t per_step = kLanes;  // points per iteration (two packets)
+    if (points.size() >= per_step) {
+      Packet lo0 = simd::ploadu<Packet>(p), hi0 = lo0, lo1 = lo0, hi1 = lo0;
+      for (; i + per_step <= points.size(); i += per_step) {
+        const Packet a = simd::ploadu<Packet>(p + 2 * i);
+        const Packet b = simd::ploadu<Packet>(p + 2 * i + kLanes);
+        lo0 = simd::pmin(lo0, a);
+        hi0 = simd::pmax(hi0, a);
+        lo1 = simd::pmin(lo1, b);
+        hi1 = simd::pmax(hi1, b);
+      }
+      alignas(64) double lo[kLanes], hi[kLanes];
+      simd::pstoreu(lo, simd::pmin(lo0, lo1));
+      simd::pstoreu(hi, simd::pmax(hi0, hi1));
+      for (Eigen::Index k = 0; k < kLanes; k += 2) {
+        x0 = std::min(x0, lo[k]);
+        y0 = std::min(y0, lo[k + 1]);
+        x1 = std::max(x1, hi[k]);
+        y1 = std::max(y1, hi[k + 1]);
+      }
+    }
+  }
+  for (; i < points.size(); ++i) {
+    x0 = std::min(x0, points[i].x);
+    x1 = std::max(x1, points[i].x);
+    y0 = std::min(y0, points[i].y);
+    y1 = std::max(y1, points[i].y);
+  }
+  return {x0, x1, y0, y1};
+}
+
+/// Refuses data whose span is outside [kMinSpanMm, kMaxSpanMm] (InvalidInput).
+void check_span(const Extent& e) {
+  const double span = std::max(e.x1 - e.x0, e.y1 - e.y0);  // may be inf for ±1e308 data
+  if (span >= kMinSpanMm && span <= kMaxSpanMm) return;
+  std::ostringstream os;
+  os.precision(3);
+  os << kCaller << ": the points span " << span << " mm; a circle is fitted in double precision "
+     << "only to data spanning " << kMinSpanMm << " to " << kMaxSpanMm
+     << " mm (its moments reach the 5th power of the span and would overflow or underflow): "
+     << "wrong unit or corrupt data?";
+  throw InvalidInput(os.str());
+}
+
 /// Per-thread scratch arrays, kept between calls: reallocating ~1 MB per call at n = 36 000
 /// cost ~100 page faults and a quarter of the run time.
 struct Workspace {
@@ -130,7 +201,7 @@ struct Workspace {
 
 class Fitter {
  public:
-  /// Copies the data to structure-of-arrays form relative to the first point p₀.
+  /// Sizes the structure-of-arrays workspace; the data enter it in load_and_kasa_start.
   Fitter(std::span<const Point2> points, Workspace& ws)
       : n_(static_cast<Eigen::Index>(points.size())),
         packed_(n_ - n_ % kLanes),
@@ -141,22 +212,17 @@ class Fitter {
     x_ = ws.x.data();
     y_ = ws.y.data();
     r_ = ws.r.data();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      x_[i] = points[i].x - shift_.x;
-      y_[i] = points[i].y - shift_.y;
-    }
   }
 
-  /// Kåsa (algebraic) circle of the local data, min Σ (x² + y² − 2ax − 2by − k)²: start
-  /// centre and radius. Moments about p₀, centred afterwards (the offset is ~R, so the
-  /// centring loses a digit or two at most — plenty for a start). Also sets the centroid.
-  void kasa_start(double& cx, double& cy, double& radius) {
-    const double nd = static_cast<double>(n_);
+  /// One pass over the input: the local coordinates p_i − p₀ into the workspace, the span
+  /// check (check_span, on the raw coordinates) and the moments of the Kåsa start below.
+  /// With SSE2 two points are loaded as two packets and unpacked into an x and a y packet;
+  /// every sum is accumulated exactly as from the stored arrays (same packets, same order).
+  void load_and_kasa_start(std::span<const Point2> points, double& cx, double& cy,
+                           double& radius) {
     Packet sx = simd::pset1<Packet>(0.0), sy = sx, sxx = sx, syy = sx, sxy = sx, sxz = sx,
            syz = sx;
-    for (Eigen::Index i = 0; i < packed_; i += kLanes) {
-      const Packet x = simd::ploadu<Packet>(x_ + i);
-      const Packet y = simd::ploadu<Packet>(y_ + i);
+    const auto accumulate = [&](Packet x, Packet y) {
       const Packet xx = simd::pmul(x, x), yy = simd::pmul(y, y);
       const Packet z = simd::padd(xx, yy);
       sx = simd::padd(sx, x);
@@ -166,7 +232,58 @@ class Fitter {
       sxy = simd::pmadd(x, y, sxy);
       sxz = simd::pmadd(x, z, sxz);
       syz = simd::pmadd(y, z, syz);
+    };
+#if defined(__SSE2__) && !defined(__AVX__)
+    static_assert(kLanes == 2 && sizeof(Point2) == 2 * sizeof(double));
+    Extent extent{points[0].x, points[0].x, points[0].y, points[0].y};
+    {
+      const double* p = reinterpret_cast<const double*>(points.data());
+      const __m128d shift_x = _mm_set1_pd(shift_.x), shift_y = _mm_set1_pd(shift_.y);
+      __m128d lo = _mm_loadu_pd(p), hi = lo;  // per coordinate: lane 0 x, lane 1 y
+      for (Eigen::Index i = 0; i < packed_; i += 2) {
+        const __m128d a = _mm_loadu_pd(p + 2 * i), b = _mm_loadu_pd(p + 2 * i + 2);
+        lo = _mm_min_pd(lo, _mm_min_pd(a, b));
+        hi = _mm_max_pd(hi, _mm_max_pd(a, b));
+        const __m128d x = _mm_sub_pd(_mm_unpacklo_pd(a, b), shift_x);
+        const __m128d y = _mm_sub_pd(_mm_unpackhi_pd(a, b), shift_y);
+        _mm_storeu_pd(x_ + i, x);
+        _mm_storeu_pd(y_ + i, y);
+        accumulate(x, y);
+      }
+      alignas(16) double l[2], h[2];
+      _mm_store_pd(l, lo);
+      _mm_store_pd(h, hi);
+      extent = {std::min(extent.x0, l[0]), std::max(extent.x1, h[0]),
+                std::min(extent.y0, l[1]), std::max(extent.y1, h[1])};
     }
+    for (Eigen::Index i = packed_; i < n_; ++i) {
+      const Point2 q = points[static_cast<std::size_t>(i)];
+      extent = {std::min(extent.x0, q.x), std::max(extent.x1, q.x), std::min(extent.y0, q.y),
+                std::max(extent.y1, q.y)};
+      x_[i] = q.x - shift_.x;
+      y_[i] = q.y - shift_.y;
+    }
+    check_span(extent);
+#else
+    check_span(extent_of(points));
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      x_[i] = points[i].x - shift_.x;
+      y_[i] = points[i].y - shift_.y;
+    }
+    for (Eigen::Index i = 0; i < packed_; i += kLanes)
+      accumulate(simd::ploadu<Packet>(x_ + i), simd::ploadu<Packet>(y_ + i));
+#endif
+    kasa_start(sx, sy, sxx, syy, sxy, sxz, syz, cx, cy, radius);
+  }
+
+ private:
+  /// Kåsa (algebraic) circle of the local data, min Σ (x² + y² − 2ax − 2by − k)²: start
+  /// centre and radius, from the packet moments of the whole packets (the rest is added
+  /// here). Moments about p₀, centred afterwards (the offset is ~R, so the centring loses a
+  /// digit or two at most — plenty for a start). Also sets the centroid.
+  void kasa_start(Packet sx, Packet sy, Packet sxx, Packet syy, Packet sxy, Packet sxz,
+                  Packet syz, double& cx, double& cy, double& radius) {
+    const double nd = static_cast<double>(n_);
     double m_x = simd::predux(sx), m_y = simd::predux(sy), m_xx = simd::predux(sxx),
            m_yy = simd::predux(syy), m_xy = simd::predux(sxy), m_xz = simd::predux(sxz),
            m_yz = simd::predux(syz);
@@ -204,6 +321,8 @@ class Fitter {
     centroid_ = {gx, gy};
   }
 
+
+ public:
   /// One pass at centre (cx, cy): distances stored in r_, sums about the reference radius
   /// r0. A full pass (kFull) uses v = u − (urx, ury) and forms Σ v vᵀ and Σ d²; a light pass
   /// uses v = u and skips them (b = Σ v d − d̄ Σ v is the same for any shift of v).
@@ -279,28 +398,56 @@ class Fitter {
     Packet rmax = simd::pset1<Packet>(-std::numeric_limits<double>::infinity());
     Packet rmin = simd::pset1<Packet>(std::numeric_limits<double>::infinity());
     Packet see = simd::pset1<Packet>(0.0);
+    // Per lane, the first index of its extremes (strict comparisons keep the first).
+    Packet index = simd::plset<Packet>(0.0), imax = index, imin = index;
+    const Packet lanes = simd::pset1<Packet>(static_cast<double>(kLanes));
     for (Eigen::Index i = 0; i < packed_; i += kLanes) {
       const Packet r = simd::ploadu<Packet>(r_ + i);
       const Packet e = simd::psub(simd::psub(r, pr0), pmd);
-      rmax = simd::pmax(rmax, r);
-      rmin = simd::pmin(rmin, r);
+      const Packet above = simd::pcmp_lt(rmax, r), below = simd::pcmp_lt(r, rmin);
+      rmax = simd::pselect(above, r, rmax);
+      imax = simd::pselect(above, index, imax);
+      rmin = simd::pselect(below, r, rmin);
+      imin = simd::pselect(below, index, imin);
       see = simd::pmadd(e, e, see);
+      index = simd::padd(index, lanes);
     }
     ResidualSummary out;
-    out.r_max = simd::predux_max(rmax);
-    out.r_min = simd::predux_min(rmin);
+    out.r_max = -std::numeric_limits<double>::infinity();
+    out.r_min = std::numeric_limits<double>::infinity();
+    alignas(64) double vmax[kLanes], vmin[kLanes], jmax[kLanes], jmin[kLanes];
+    simd::pstoreu(vmax, rmax);
+    simd::pstoreu(vmin, rmin);
+    simd::pstoreu(jmax, imax);
+    simd::pstoreu(jmin, imin);
+    double at_max = 0.0, at_min = 0.0;
+    for (Eigen::Index k = 0; k < (packed_ > 0 ? kLanes : 0); ++k) {  // lowest index on ties
+      if (vmax[k] > out.r_max || (vmax[k] == out.r_max && jmax[k] < at_max)) {
+        out.r_max = vmax[k];
+        at_max = jmax[k];
+      }
+      if (vmin[k] < out.r_min || (vmin[k] == out.r_min && jmin[k] < at_min)) {
+        out.r_min = vmin[k];
+        at_min = jmin[k];
+      }
+    }
+    out.max_index = static_cast<std::size_t>(at_max);
+    out.min_index = static_cast<std::size_t>(at_min);
     out.sum_ee = simd::predux(see);
     for (Eigen::Index i = packed_; i < n_; ++i) {
       const double e = (r_[i] - r0) - mean_d;
-      out.r_max = std::max(out.r_max, r_[i]);
-      out.r_min = std::min(out.r_min, r_[i]);
+      if (r_[i] > out.r_max) {
+        out.r_max = r_[i];
+        out.max_index = static_cast<std::size_t>(i);
+      }
+      if (r_[i] < out.r_min) {
+        out.r_min = r_[i];
+        out.min_index = static_cast<std::size_t>(i);
+      }
       out.sum_ee += e * e;
     }
     return out;
   }
-
-  /// First index i with r_[i] == v (v is a value of r_).
-  std::size_t first_index_of(double v) const { return first_index(r_, n_, v); }
 
   Eigen::Index size() const { return n_; }
   Point2 shift() const { return shift_; }
@@ -330,74 +477,14 @@ LeastSquaresCircle least_squares_circle(std::span<const Point2> points) {
   return internal::fit_least_squares_circle(points);
 }
 
-namespace {
-
-/// Spans of the data (mm) the fit handles: the Kåsa start forms products up to the 5th power
-/// of the local coordinates (cyy·cxz), sums over up to ~1e8 points add 8 decades, and the
-/// results must stay inside the normal double range (1e±308): 1e-50 ≤ s ≤ 1e50 leaves a margin
-/// of ~50 decades. Beyond, the moments overflow or underflow and Gauss-Newton would call the
-/// data straight; a span outside is a wrong unit or corrupt data, not a roundness profile.
-constexpr double kMinSpanMm = 1e-50;
-constexpr double kMaxSpanMm = 1e50;
-
-void check_span(std::span<const Point2> points) {
-  double x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
-  std::size_t i = 0;
-  if constexpr (kLanes % 2 == 0) {
-    // The points as interleaved x, y doubles: a packet holds kLanes / 2 whole points, so
-    // lane-wise extremes are per coordinate (even lanes x, odd lanes y). Two packets an
-    // iteration (independent chains); min/max are exact, so the result is the scalar loop's.
-    static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
-    const double* p = reinterpret_cast<const double*>(points.data());
-    constexpr std::size_t per_step = kLanes;  // points per iteration (two packets)
-    if (points.size() >= per_step) {
-      Packet lo0 = simd::ploadu<Packet>(p), hi0 = lo0, lo1 = lo0, hi1 = lo0;
-      for (; i + per_step <= points.size(); i += per_step) {
-        const Packet a = simd::ploadu<Packet>(p + 2 * i);
-        const Packet b = simd::ploadu<Packet>(p + 2 * i + kLanes);
-        lo0 = simd::pmin(lo0, a);
-        hi0 = simd::pmax(hi0, a);
-        lo1 = simd::pmin(lo1, b);
-        hi1 = simd::pmax(hi1, b);
-      }
-      alignas(64) double lo[kLanes], hi[kLanes];
-      simd::pstoreu(lo, simd::pmin(lo0, lo1));
-      simd::pstoreu(hi, simd::pmax(hi0, hi1));
-      for (Eigen::Index k = 0; k < kLanes; k += 2) {
-        x0 = std::min(x0, lo[k]);
-        y0 = std::min(y0, lo[k + 1]);
-        x1 = std::max(x1, hi[k]);
-        y1 = std::max(y1, hi[k + 1]);
-      }
-    }
-  }
-  for (; i < points.size(); ++i) {
-    x0 = std::min(x0, points[i].x);
-    x1 = std::max(x1, points[i].x);
-    y0 = std::min(y0, points[i].y);
-    y1 = std::max(y1, points[i].y);
-  }
-  const double span = std::max(x1 - x0, y1 - y0);  // may be inf for ±1e308 data: refused
-  if (span >= kMinSpanMm && span <= kMaxSpanMm) return;
-  std::ostringstream os;
-  os.precision(3);
-  os << kCaller << ": the points span " << span << " mm; a circle is fitted in double precision "
-     << "only to data spanning " << kMinSpanMm << " to " << kMaxSpanMm
-     << " mm (its moments reach the 5th power of the span and would overflow or underflow): "
-     << "wrong unit or corrupt data?";
-  throw InvalidInput(os.str());
-}
-
-}  // namespace
 
 LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> points) {
-  check_span(points);
   thread_local Workspace workspace;
   Fitter fit(points, workspace);
   const double nd = static_cast<double>(fit.size());
 
   double cx = 0.0, cy = 0.0, r0 = 0.0;
-  fit.kasa_start(cx, cy, r0);
+  fit.load_and_kasa_start(points, cx, cy, r0);
   // Shift for the directions in M: ≈ ū ≈ (centroid − c) / R — zero for a full circle,
   // towards the arc's middle for an arc.
   const Point2 g = fit.centroid();
@@ -498,7 +585,7 @@ LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> po
   // Residuals about (centre, R): e_i = (r_i − R₀) − d̄. Contacts: the first positions of the
   // extreme distances (lowest index wins ties).
   const ResidualSummary sum = fit.summarize(r0, mean_d);
-  out.contacts = {fit.first_index_of(sum.r_max), fit.first_index_of(sum.r_min)};
+  out.contacts = {sum.max_index, sum.min_index};
   const double emax = (sum.r_max - r0) - mean_d;
   const double emin = (sum.r_min - r0) - mean_d;
   out.ron.ront = emax - emin;

@@ -78,24 +78,35 @@ struct Support {
 
 /// Welzl's algorithm on a small set, in the iterative three-loop form (de Berg et al.,
 /// Computational Geometry, 3rd ed., 4.7; expected O(m) predicate calls for a random order,
-/// O(m³) worst case — see order_farthest_first for the order used). Works on positions
-/// into the set; every decision is an exact predicate.
+/// O(m³) worst case) with Welzl's move-to-front heuristic (Welzl 1991, section 3; Gärtner's
+/// miniball): a point found outside moves to the front of the list, so the later loops meet
+/// the supports first. Started farthest-first (order_farthest_first). Works on positions
+/// into the set; every decision is an exact predicate. The circle is unique; which of ≥ 4
+/// exactly co-circular points support it depends on the order (`move_to_front` false: the
+/// plain three-loop form, whose choice the reported contacts keep on such sets).
 class Welzl {
  public:
-  Welzl(std::span<const Point2> points, std::span<const std::size_t> set) : set_(set) {
+  Welzl(std::span<const Point2> points, std::span<const std::size_t> set,
+        bool move_to_front = true)
+      : set_(set), mtf_(move_to_front) {
     pt_.reserve(set.size());
     ep_.reserve(set.size());
+    order_.reserve(set.size());
     for (std::size_t i : set) {
+      order_.push_back(pt_.size());
       pt_.push_back(points[i]);
       ep_.push_back(to_epick(points[i]));
     }
   }
 
   /// MC of the set (precondition: non-empty).
-  Support run() const {
-    Pos d{1, {0, 0, 0}, CGAL::COLLINEAR};
-    for (std::size_t i = 1; i < ep_.size(); ++i)
-      if (is_outside(d, i)) d = with_one(i);
+  Support run() {
+    Pos d{1, {order_[0], 0, 0}, CGAL::COLLINEAR};
+    for (std::size_t t = 1; t < order_.size(); ++t)
+      if (is_outside(d, order_[t])) {
+        d = with_one(t);
+        move_to_front(t);
+      }
     Support s{d.size, {}};
     for (int k = 0; k < d.size; ++k) s.idx[k] = set_[d.pos[k]];
     return s;
@@ -107,20 +118,34 @@ class Welzl {
     std::array<std::size_t, 3> pos{};
     CGAL::Orientation orientation = CGAL::COLLINEAR;  ///< of 3 supports, once known
   };
-  // MC of set[0..i) ∪ {set[i]} with set[i] on the boundary.
-  Pos with_one(std::size_t i) const {
+  /// The list entry at t moves to the front; entries 0..t−1 shift back by one.
+  void move_to_front(std::size_t t) {
+    if (!mtf_) return;
+    std::rotate(order_.begin(), order_.begin() + static_cast<std::ptrdiff_t>(t),
+                order_.begin() + static_cast<std::ptrdiff_t>(t) + 1);
+  }
+  // MC of the list's first t points and point i = order_[t], with i on the boundary.
+  Pos with_one(std::size_t t) {
+    const std::size_t i = order_[t];
     Pos d{1, {i, 0, 0}, CGAL::COLLINEAR};
-    for (std::size_t j = 0; j < i; ++j)
-      if (is_outside(d, j)) d = with_two(j, i);
+    for (std::size_t u = 0; u < t; ++u)
+      if (is_outside(d, order_[u])) {
+        d = with_two(u, i);
+        move_to_front(u);
+      }
     return d;
   }
-  // MC of set[0..j) ∪ {set[j], set[i]} with both on the boundary. Welzl's Lemma 1 makes
-  // the circle through set[i], set[j] and a violator set[k] exist, so the three are never
-  // collinear (the decisions being exact, this holds exactly).
-  Pos with_two(std::size_t j, std::size_t i) const {
+  // MC of the list's first u points and j = order_[u], i, with j and i on the boundary.
+  // Welzl's Lemma 1 makes the circle through i, j and a violator k exist, so the three are
+  // never collinear (the decisions being exact, this holds exactly).
+  Pos with_two(std::size_t u, std::size_t i) {
+    const std::size_t j = order_[u];
     Pos d{2, {j, i, 0}, CGAL::COLLINEAR};
-    for (std::size_t k = 0; k < j; ++k)
-      if (is_outside(d, k)) d = Pos{3, {j, i, k}, CGAL::COLLINEAR};
+    for (std::size_t v = 0; v < u; ++v)
+      if (is_outside(d, order_[v])) {
+        d = Pos{3, {j, i, order_[v]}, CGAL::COLLINEAR};
+        move_to_front(v);
+      }
     return d;
   }
   // Exact "strictly outside" tests: for 2 supports the sign of (t − a)·(t − b) (filtered
@@ -150,6 +175,8 @@ class Welzl {
   std::span<const std::size_t> set_;
   std::vector<Point2> pt_;
   std::vector<EPoint> ep_;
+  std::vector<std::size_t> order_;  ///< the list: positions into pt_, moved to front
+  bool mtf_;
 };
 
 ExactCircle exact_circle_of(std::span<const Point2> points, const Support& s) {
@@ -178,6 +205,21 @@ void order_farthest_first(std::span<const Point2> points, Point2 c,
   }
   std::sort(key.begin(), key.end());
   for (std::size_t k = 0; k < v.size(); ++k) v[k] = key[k].second;
+}
+
+/// The supports listed as the plain three-loop Welzl run on the farthest-first `set` lists
+/// them (so the reported contacts keep their order whatever list order found them): with
+/// positions in `set` a < b < c, a pair is (a, b) and a triple (b, c, a) — the last restart
+/// of the middle loop, of the outer loop, then of the inner loop.
+Support in_three_loop_order(Support s, const std::vector<std::size_t>& set) {
+  const auto position = [&](std::size_t i) {
+    return static_cast<std::size_t>(std::find(set.begin(), set.end(), i) - set.begin());
+  };
+  for (int k = 1; k < s.size; ++k)  // insertion sort of ≤ 3 by position
+    for (int j = k; j > 0 && position(s.idx[j]) < position(s.idx[j - 1]); --j)
+      std::swap(s.idx[j], s.idx[j - 1]);
+  if (s.size == 3) s.idx = {s.idx[1], s.idx[2], s.idx[0]};
+  return s;
 }
 
 /// The final contacts: 2 or 3 indices whose closed hull contains the exact centre.
@@ -270,7 +312,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
     if (best[s] >= 0.0) set.push_back(best_idx[s]);
   if (set.size() < 2) set.push_back(0);  // degenerate warm start; the loop repairs it
 
-  std::vector<std::size_t> violators, on_circle, flagged;
+  std::vector<std::size_t> violators, on_circle, flagged, list;
   std::vector<std::pair<double, std::size_t>> violator_keys;
   flagged.reserve(1024);  // a first round on a sparse sample flags a few hundred points
   violators.reserve(1024);
@@ -284,7 +326,16 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
   while (true) {
     ++rounds;
     order_farthest_first(points, order_center, set);
-    support = Welzl(points, set).run();
+    // After the first round the last round's supports go first: their circle is nearly the
+    // answer, so most candidates are inside it when met and cost one predicate each.
+    list.assign(set.begin(), set.end());
+    if (rounds > 1)
+      std::stable_partition(list.begin(), list.end(), [&](std::size_t i) {
+        for (int k = 0; k < support.size; ++k)
+          if (support.idx[k] == i) return true;
+        return false;
+      });
+    support = in_three_loop_order(Welzl(points, list).run(), set);
     circle = exact_circle_of(points, support);
 
     // 3. Classify every point; keep the nearest one (for RONt) and those exactly on the
@@ -345,6 +396,17 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
     order_center = cd;
   }
 
+  // ≥ 4 exactly co-circular points on the circle: the supports among them depend on the
+  // list order, so take those of the plain three-loop run on the farthest-first set (the
+  // same circle: MC(set) is unique), whose choice the contacts have always reported.
+  const auto is_support_point = [&](std::size_t i) {
+    for (int k = 0; k < support.size; ++k)
+      if (points[i] == points[support.idx[k]]) return true;
+    return false;
+  };
+  if (!std::all_of(on_circle.begin(), on_circle.end(), is_support_point))
+    support = Welzl(points, set, /*move_to_front=*/false).run();
+
   MinimumCircumscribedCircle mc;
   mc.center = circle.center_d;
   mc.radius = circle.radius;
@@ -353,7 +415,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
     for (std::size_t i : on_circle)
       if (i < c && points[i] == points[c]) c = i;
   // 5. Roundness parameters: RONq from the shared evaluator; RONt without cancellation.
-  mc.ron = roundness_parameters(points, mc.center, mc.radius);
+  mc.ron = internal::roundness_parameters_of_valid(points, mc.center, mc.radius);
   // In the filter's scaled units: (R*² − ρ²)s² / ((R* + ρ)s), then back by s⁻¹ (exact).
   const double rho_s = std::sqrt(nearest_d2);
   const double gap_s = internal::exact_power_gap(circle, points[nearest]);  // ≥ 0 exactly

@@ -397,8 +397,10 @@ bool same_point_as_contact(std::span<const Point2> points, const Quad& q, Point2
 /// One pass: exact containment of every point in the closed annulus of `k` — a floating
 /// filter with rigorous thresholds (surely inside, surely outside), exact rational
 /// comparison only for the ambiguous rest, stopping at the first violation — and RONq about
-/// the mean circle.
-PassResult containment_pass(std::span<const Point2> points, const Candidate& k) {
+/// the mean circle. `stop_at_violation`: a point surely outside ends the pass early (ronq and
+/// ambiguous then incomplete: for callers that only need the verdict).
+PassResult containment_pass(std::span<const Point2> points, const Candidate& k,
+                            bool stop_at_violation = false) {
   PassResult out;
 
   // |p − c*| ≤ √(s/(1 − 4u)) + dc with s the computed |p − ĉ|²; thresholds on s with every
@@ -419,10 +421,10 @@ PassResult containment_pass(std::span<const Point2> points, const Candidate& k) 
   const bool thin = std::max(std::abs(k.rounded.outer_sq - rm2),
                              std::abs(k.rounded.inner_sq - rm2)) <= 2e-4 * rm2;
   const double inv = 0.5 / rm2;
-  // Two passes: a branch-free map (vectorised) of the squared distances s_i, the squared
-  // deviations and a 0/1 flag "not surely placed" into per-thread buffers, the deviations
-  // summed by Eigen's vectorised reduction; then a scan of the flags four at a time for the
-  // few points the filter cannot place.
+  // Per block, two loops: a branch-free map (vectorised) of the squared distances s_i, the
+  // squared deviations and a 0/1 flag "not surely placed" into per-thread buffers, then a
+  // scan of the flags four at a time for the few points the filter cannot place; at the end
+  // the deviations summed by Eigen's vectorised reduction over the whole buffer.
   const std::size_t n = points.size();
   thread_local std::vector<double> squared_distance, squared_deviation;
   squared_distance.resize(n);
@@ -434,39 +436,49 @@ PassResult containment_pass(std::span<const Point2> points, const Candidate& k) 
   thread_local std::vector<double> flag_buffer;
   flag_buffer.resize(n + 3);
   double* __restrict flag = flag_buffer.data();  // 1: the filter cannot place point i
-  if (thin) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const double dx = p[i].x - cx, dy = p[i].y - cy;
-      const double s = dx * dx + dy * dy;
-      const double x = (s - rm2) * inv;
-      const double dev = rm * x * (1.0 + x * (-0.5 + x * (0.5 - 0.625 * x)));
-      sq[i] = s;
-      dev2[i] = dev * dev;
-      flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
-    }
-  } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      const double dx = p[i].x - cx, dy = p[i].y - cy;
-      const double s = dx * dx + dy * dy;
-      const double dev = (s - rm2) / (std::sqrt(s) + rm);
-      sq[i] = s;
-      dev2[i] = dev * dev;
-      flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
-    }
-  }
   flag[n] = flag[n + 1] = flag[n + 2] = 0.0;  // padding for the blocks of four below
-  const double sum =
-      Eigen::Map<const Eigen::ArrayXd>(dev2, static_cast<Eigen::Index>(n)).sum();
+  // Blocks of kBlock points (a multiple of 4): map, then scan; with `stop_at_violation` a
+  // point surely outside ends the pass at its block (the caller only needs the verdict).
+  constexpr std::size_t kBlock = 512;
   bool surely_outside = false;
   std::vector<std::size_t>& ambiguous = out.ambiguous;
-  for (std::size_t b = 0; b < n; b += 4) {
-    if (flag[b] + flag[b + 1] + flag[b + 2] + flag[b + 3] == 0.0) continue;
-    for (std::size_t i = b; i < std::min(b + 4, n); ++i) {
-      if (flag[i] == 0.0) continue;
-      if (sq[i] > t_out_hi || sq[i] < t_in_lo) surely_outside = true;
-      ambiguous.push_back(i);
+  for (std::size_t lo = 0; lo < n; lo += kBlock) {
+    const std::size_t hi = std::min(lo + kBlock, n);
+    if (thin) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        const double dx = p[i].x - cx, dy = p[i].y - cy;
+        const double s = dx * dx + dy * dy;
+        const double x = (s - rm2) * inv;
+        const double dev = rm * x * (1.0 + x * (-0.5 + x * (0.5 - 0.625 * x)));
+        sq[i] = s;
+        dev2[i] = dev * dev;
+        flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
+      }
+    } else {
+      for (std::size_t i = lo; i < hi; ++i) {
+        const double dx = p[i].x - cx, dy = p[i].y - cy;
+        const double s = dx * dx + dy * dy;
+        const double dev = (s - rm2) / (std::sqrt(s) + rm);
+        sq[i] = s;
+        dev2[i] = dev * dev;
+        flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
+      }
+    }
+    for (std::size_t b = lo; b < hi; b += 4) {
+      if (flag[b] + flag[b + 1] + flag[b + 2] + flag[b + 3] == 0.0) continue;
+      for (std::size_t i = b; i < std::min(b + 4, n); ++i) {
+        if (flag[i] == 0.0) continue;
+        if (sq[i] > t_out_hi || sq[i] < t_in_lo) surely_outside = true;
+        ambiguous.push_back(i);
+      }
+    }
+    if (surely_outside && stop_at_violation) {
+      out.contains = false;
+      return out;
     }
   }
+  const double sum =
+      Eigen::Map<const Eigen::ArrayXd>(dev2, static_cast<Eigen::Index>(n)).sum();
   out.ronq = std::sqrt(sum / static_cast<double>(n));
   if (surely_outside) {
     out.contains = false;
@@ -1140,7 +1152,7 @@ std::optional<Certified> certify(std::span<const Point2> points, const Quad& q) 
   std::optional<Candidate> k = make_candidate(points, q);
   if (!k) return std::nullopt;
   const bool alternating = is_strictly_alternating(points, *k);
-  PassResult pass = containment_pass(points, *k);
+  PassResult pass = containment_pass(points, *k, /*stop_at_violation=*/true);
   if (!pass.contains) return std::nullopt;
   if (alternating) return Certified{std::move(*k), std::move(pass)};
   // Exact ties: another 2+2 of the contacts at the same centre may alternate.
@@ -1148,7 +1160,7 @@ std::optional<Certified> certify(std::span<const Point2> points, const Quad& q) 
   if (!tied) return std::nullopt;
   std::optional<Candidate> t = make_candidate(points, *tied);
   if (!t || !is_strictly_alternating(points, *t)) return std::nullopt;
-  PassResult tied_pass = containment_pass(points, *t);
+  PassResult tied_pass = containment_pass(points, *t, /*stop_at_violation=*/true);
   if (!tied_pass.contains) return std::nullopt;
   return Certified{std::move(*t), std::move(tied_pass)};
 }

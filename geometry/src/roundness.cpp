@@ -14,6 +14,7 @@
 #include <cmath>
 #include <span>
 
+#include "internal/angular_walk.h"
 #include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
@@ -29,31 +30,6 @@ void fit_or_record(RoundnessEvaluation& out, ReferenceCircle circle, Fit fit) {
   } catch (const UndefinedResult& e) {
     out.undefined[circle] = e.what();
   }
-}
-
-/// True when the points, walked in input order as a closed polygon, turn the same way about
-/// `center` by a certain, positive angle below `limit` (rad, < π/2) at every step. Then the
-/// largest angular gap is below `limit`: the walk winds round `center` at least once, so every
-/// empty arc of directions lies within one step. A fast path for angular_coverage's
-/// "largest gap > limit" on scans given in angular order (no atan2 per point); false decides
-/// nothing. The tolerances (the sign needs cross > 1e-9 |u||v|, and the limit is met with a
-/// margin by the caller) are far above the rounding of these few operations.
-bool steps_are_short(std::span<const Point2> points, Point2 center, double limit) {
-  const double tan_limit = std::tan(limit);
-  int turn = 0;
-  const std::size_t n = points.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point2 a = points[i], b = points[i + 1 == n ? 0 : i + 1];
-    const double ux = a.x - center.x, uy = a.y - center.y;
-    const double vx = b.x - center.x, vy = b.y - center.y;
-    const double cross = ux * vy - uy * vx, dot = ux * vx + uy * vy;
-    const bool certain = cross * cross > 1e-18 * ((ux * ux + uy * uy) * (vx * vx + vy * vy));
-    const int s = !certain ? 0 : cross > 0.0 ? 1 : -1;
-    if (s == 0 || (turn != 0 && s != turn) || !(dot > 0.0)) return false;
-    turn = s;
-    if (!(std::fabs(cross) < dot * tan_limit)) return false;
-  }
-  return true;
 }
 
 }  // namespace
@@ -93,7 +69,7 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
     validate_profile(points, 8, "gaussian_filtered_profile");
     const LeastSquaresCircle raw_ls = internal::fit_least_squares_circle(points);
     const double max_gap = kHalfTurn / *request.filter_cutoff_upr;
-    const bool open = !steps_are_short(points, raw_ls.center, 0.9 * max_gap) &&
+    const bool open = !internal::has_angular_steps_below(points, raw_ls.center, max_gap) &&
                       angular_coverage(points, raw_ls.center).largest_gap_rad > max_gap;
     // The closed filter about the LS circle just fitted (the same fit it would repeat).
     FilteredProfile f =

@@ -70,6 +70,73 @@ TEST(AngularCoverage, InvariantUnderPermutationAndRotation) {
   EXPECT_NEAR(angular_coverage(q, {5.0, -3.0}).covered_rad, a.covered_rad, 1e-12);
 }
 
+// Scans in angular order take the fast path (angular_coverage.cpp: atan2 for a few candidate
+// steps only); the same points shuffled take the general path (an atan2 per point, buckets).
+// The two must agree bit for bit, indices mapped through the permutation, over closed scans
+// either way round, with jitter, missing points, far centres and an exactly equiangular ring
+// (many tied steps: the fast path declines), and across θ = ±π at any start angle.
+TEST(AngularCoverage, ScanOrderFastPathEqualsGeneralPathBitForBit) {
+  std::mt19937_64 rng(20261127);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 400; ++trial) {
+    const std::size_t n = 16 + static_cast<std::size_t>(unit(rng) * 4000.0);
+    const double start = unit(rng) * 2.0 * kPi, sense = (trial / 4) % 2 ? 1.0 : -1.0;
+    const double jitter = trial % 5 == 0 ? 0.0 : unit(rng) * 0.45;
+    const Point2 c{trial % 3 ? 0.0 : 900.0 * unit(rng), trial % 3 ? 0.0 : -400.0 * unit(rng)};
+    std::vector<Point2> p;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (trial % 7 == 1 && (i == n / 3 || i == n / 3 + 1)) continue;  // a missing pair
+      const double t = start + sense * (double(i) + jitter * (unit(rng) - 0.5)) * 2.0 * kPi /
+                                   double(n);
+      const double r = 85.5 + (trial % 5 == 0 ? 0.0 : 1e-3 * (unit(rng) - 0.5));
+      p.push_back({c.x + r * std::cos(t), c.y + r * std::sin(t)});
+    }
+    std::vector<std::size_t> perm(p.size());
+    for (std::size_t i = 0; i < perm.size(); ++i) perm[i] = i;
+    std::shuffle(perm.begin(), perm.end(), rng);
+    std::vector<Point2> q(p.size());
+    for (std::size_t i = 0; i < perm.size(); ++i) q[i] = p[perm[i]];
+    // A centre off the points' own by 0 to 1 µm: the LS centre of a filtered profile is not
+    // theirs either, and the closer it is, the more steps tie to the last ulps.
+    const double off = trial % 4 == 0 ? 0.0 : trial % 4 == 1 ? 1e-3 : trial % 4 == 2 ? 1e-7 : 1e-10;
+    const Point2 at{c.x + off * (unit(rng) - 0.5), c.y + off * (unit(rng) - 0.5)};
+    const AngularCoverage a = angular_coverage(p, at), b = angular_coverage(q, at);
+    EXPECT_EQ(a.largest_gap_rad, b.largest_gap_rad) << "trial " << trial << " n " << n;
+    EXPECT_EQ(a.covered_rad, b.covered_rad) << trial;
+    EXPECT_EQ(a.gap_start_rad, b.gap_start_rad) << trial;
+    EXPECT_EQ(a.gap_start_index, perm[b.gap_start_index]) << trial;
+    EXPECT_EQ(a.gap_end_index, perm[b.gap_end_index]) << trial;
+    EXPECT_EQ(a.closed, b.closed) << trial;
+  }
+}
+
+// Points on the axis through the centre with y = −0 (atan2(−0, x < 0) = −π: the smallest
+// angle, not the largest), in scan order and shuffled, either way round.
+TEST(AngularCoverage, NegativeZeroOnTheAxisKeepsItsAtan2Side) {
+  for (double sense : {1.0, -1.0}) {
+    std::vector<Point2> p;
+    for (int i = 0; i < 64; ++i) {
+      const double t = sense * i * kPi / 32.0;
+      p.push_back({std::cos(t), std::sin(t)});
+    }
+    p[32] = {-1.0, -0.0};  // θ = π
+    p[0] = {1.0, -0.0};    // θ = 0
+    const AngularCoverage a = angular_coverage(p, {0.0, 0.0});
+    std::vector<Point2> q(p.rbegin(), p.rend());  // the other way round
+    std::rotate(q.begin(), q.begin() + 5, q.end());
+    std::mt19937_64 rng(5);
+    std::vector<Point2> r = p;
+    std::shuffle(r.begin(), r.end(), rng);
+    for (const auto& other : {q, r}) {
+      const AngularCoverage b = angular_coverage(other, {0.0, 0.0});
+      EXPECT_EQ(a.largest_gap_rad, b.largest_gap_rad) << sense;
+      EXPECT_EQ(a.gap_start_rad, b.gap_start_rad) << sense;
+      EXPECT_EQ(p[a.gap_start_index], other[b.gap_start_index]) << sense;
+      EXPECT_EQ(p[a.gap_end_index], other[b.gap_end_index]) << sense;
+    }
+  }
+}
+
 TEST(AngularCoverage, PointsAtTheCentreAreLeftOutAndBadInputRefused) {
   std::vector<Point2> p = {{1, 0}, {0, 0}, {-1, 0}, {0, 1}};
   const AngularCoverage c = angular_coverage(p, {0, 0});

@@ -99,6 +99,25 @@ std::vector<Point2> circle_points(Point2 c, double r, std::size_t n, double star
 
 // ---- (a) cases a reader can check by hand ---------------------------------------------------
 
+// Contacts are the first positions of the extreme distances: the peak and the valley each
+// copied to a lower and a higher index (exact duplicates tie exactly), in either SIMD lane.
+TEST(LeastSquaresCircle, TiedExtremesReportTheLowestIndex) {
+  for (std::size_t n : {101u, 102u}) {
+    std::vector<Point2> p = vcmm::test::lobed_noisy_ring(n, 3, 5e-5, {600.0, 500.0});
+    const auto outward = [&](std::size_t i, double by) {
+      const double dx = p[i].x - 600.0, dy = p[i].y - 500.0, r = std::hypot(dx, dy);
+      p[i] = {600.0 + dx * (r + by) / r, 500.0 + dy * (r + by) / r};
+    };
+    outward(57, 2e-3);   // the peak
+    outward(70, -2e-3);  // the valley
+    for (std::size_t copy : {std::size_t{3}, std::size_t{58}, n - 1}) p[copy] = p[57];
+    for (std::size_t copy : {std::size_t{4}, std::size_t{71}, n - 2}) p[copy] = p[70];
+    const LeastSquaresCircle ls = least_squares_circle(p);
+    EXPECT_EQ(ls.contacts[0], 3u) << n;
+    EXPECT_EQ(ls.contacts[1], 4u) << n;
+  }
+}
+
 TEST(LeastSquaresCircle, ExactIntegerCircle) {
   // The twelve integer points of the circle of radius 5 about (3, −2): (±5, 0), (0, ±5),
   // (±3, ±4), (±4, ±3).

@@ -132,6 +132,43 @@ void expect_invalid(const std::vector<Point2>& pts, Point2 c, double r, const st
   }
 }
 
+// The evaluator takes distances two at a time (roundness_parameters.cpp); it must equal the
+// one-point-at-a-time definition bit for bit: odd and even counts, far-from-origin data, and
+// points at the centre (distance 0: the hypot fallback inside a pair).
+TEST(RoundnessParameters, EqualsTheScalarDefinitionBitForBit) {
+  const auto reference = [](const std::vector<Point2>& p, Point2 c, double radius) {
+    const auto dist = [](double dx, double dy) {
+      const double r = std::sqrt(dx * dx + dy * dy);
+      return std::isfinite(r) && r > 1e-150 ? r : std::hypot(dx, dy);
+    };
+    const double size = std::max(std::fabs(radius), dist(p[0].x - c.x, p[0].y - c.y));
+    const int e = size > 0.0 && std::isfinite(size) ? std::ilogb(size) : 0;
+    double r_max = 0.0, r_min = 0.0, sum = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double r = dist(p[i].x - c.x, p[i].y - c.y);
+      r_max = i == 0 ? r : std::max(r_max, r);
+      r_min = i == 0 ? r : std::min(r_min, r);
+      const double d = (r - radius) * std::ldexp(1.0, -e);
+      sum += d * d;
+    }
+    return RoundnessParameters{r_max - r_min, std::max(0.0, r_max - radius),
+                               std::max(0.0, radius - r_min),
+                               std::ldexp(std::sqrt(sum / double(p.size())), e)};
+  };
+  for (std::size_t n : {1u, 2u, 3u, 360u, 3601u}) {
+    auto p = vcmm::test::lobed_noisy_ring(std::max<std::size_t>(n, 3), 11, 5e-5, {600, 500});
+    p.resize(n);
+    const Point2 c{600.0 + 3e-7, 500.0 - 2e-7};
+    if (n > 3) p[2] = p[n - 2] = c;  // at the centre
+    const RoundnessParameters got = roundness_parameters(p, c, 85.5);
+    const RoundnessParameters want = reference(p, c, 85.5);
+    EXPECT_EQ(got.ront, want.ront) << n;
+    EXPECT_EQ(got.ronp, want.ronp) << n;
+    EXPECT_EQ(got.ronv, want.ronv) << n;
+    EXPECT_EQ(got.ronq, want.ronq) << n;
+  }
+}
+
 TEST(RoundnessParametersBadInput, NoPoints) { expect_invalid({}, {0, 0}, 1.0, "at least 1"); }
 
 TEST(RoundnessParametersBadInput, NonFinitePoint) {

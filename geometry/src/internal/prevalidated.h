@@ -11,6 +11,7 @@
 #include "vcmm/geometry/maximum_inscribed.h"
 #include "vcmm/geometry/minimum_circumscribed.h"
 #include "vcmm/geometry/minimum_zone.h"
+#include "vcmm/geometry/roundness_parameters.h"
 
 namespace vcmm::geometry::internal {
 
@@ -28,5 +29,10 @@ MaximumInscribedCircle fit_maximum_inscribed_circle(std::span<const Point2> poin
 /// minimum_circumscribed_circle(points) without validate_profile. Precondition (not
 /// checked): validate_profile(points, 2, …, false) — ≥ 2 finite points, not all identical.
 MinimumCircumscribedCircle fit_minimum_circumscribed_circle(std::span<const Point2> points);
+
+/// roundness_parameters(points, center, reference_radius) without its checks.
+/// Precondition (not checked): ≥ 1 finite point, finite centre and radius.
+RoundnessParameters roundness_parameters_of_valid(std::span<const Point2> points,
+                                                  Point2 center, double reference_radius);
 
 }  // namespace vcmm::geometry::internal

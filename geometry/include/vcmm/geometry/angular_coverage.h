@@ -28,7 +28,9 @@ struct AngularCoverage {
 
 /// The coverage of `points` about `center` (e.g. the LS centre); points at the centre have no
 /// direction and are left out. Preconditions (InvalidInput): finite points and centre, ≥ 2
-/// points away from the centre. O(n): the largest gap by pigeonhole buckets, no sort.
+/// points away from the centre. O(n): the largest gap by pigeonhole buckets, no sort; a scan
+/// given in angular order (either sense) takes atan2 only for the few steps that can be the
+/// largest gap, with the same result bit for bit (~12 µs at n = 3 600, angular_coverage.cpp).
 AngularCoverage angular_coverage(std::span<const Point2> points, Point2 center);
 
 }  // namespace vcmm::geometry

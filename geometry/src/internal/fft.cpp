@@ -216,8 +216,10 @@ template <class T>
     return v;
   }
 }
+// v by reference: a 32-byte vector passed by value draws GCC's -Wpsabi note in the baseline
+// (non-AVX) compilation of this template, although the call is always inlined.
 template <class T>
-[[gnu::always_inline]] inline void store(double* p, T v) {
+[[gnu::always_inline]] inline void store(double* p, const T& v) {
   if constexpr (std::is_same_v<T, double>) {
     *p = v;
   } else {

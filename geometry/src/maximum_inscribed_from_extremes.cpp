@@ -18,15 +18,13 @@ namespace vcmm::geometry {
 namespace {
 
 constexpr const char* kCaller = "maximum_inscribed_ront_from_extremes";
-constexpr double kU = 0x1.0p-53;
-/// The band of S's first choice, as a fraction of the deviations' peak-to-valley (header).
-constexpr double kBand = 0.45;
-/// Neighbours taken either side of a valley or a violator.
-constexpr std::size_t kNeighbours = 1;
+using internal::kFirstBand;         // the subset policy: internal/profile_extremes.h
+using internal::kSubsetNeighbours;
+using internal::kSubsetRounds;
+using internal::kUnitRoundoff;
 /// Every k-th point is in S, k = n/32 but at most 64: angular gaps ≤ 2π/32 (0.11 rad at
 /// n = 3600), so the hull bound is ≲ 0.2 ρ, far below r_S/2 (header).
 constexpr std::size_t kAnchors = 32, kMaxAnchorStep = 64;
-constexpr int kRounds = 6;
 
 /// The hull bound of the header for S sorted by index: true when every circle centred in
 /// H \ H_S is provably smaller than r_S/2. Needs unit directions (to 1e-9) in angular order
@@ -71,7 +69,7 @@ double maximum_inscribed_ront_from_extremes(const PolarProfile& p, ExtremesScrat
   const internal::ValueRange d = internal::deviation_ranges(p, s, kCaller);
   internal::clear_subset(n, s);
   internal::add_deviation_extremes(p, s, std::numeric_limits<double>::infinity(),
-                                   d.lo + kBand * (d.hi - d.lo), kNeighbours);
+                                   d.lo + kFirstBand * (d.hi - d.lo), kSubsetNeighbours);
   const std::size_t step = std::clamp<std::size_t>(n / kAnchors, 1, kMaxAnchorStep);
   for (std::size_t j = 0; j < n; j += step) internal::add_with_neighbours(j, 0, n, s);
   // ρ_max: |p_j| ≤ (R₀ + d_j)|u_j|(1 + 3u); the directions are unit to 1e-9 (checked below).
@@ -80,7 +78,7 @@ double maximum_inscribed_ront_from_extremes(const PolarProfile& p, ExtremesScrat
   const std::size_t highest = internal::index_of_highest(p, s);
   s.fell_back = false;
   std::vector<std::size_t> sorted;
-  for (s.rounds = 1; s.rounds <= kRounds && s.subset_index.size() >= 8; ++s.rounds) {
+  for (s.rounds = 1; s.rounds <= kSubsetRounds && s.subset_index.size() >= 8; ++s.rounds) {
     internal::collect_subset(p, s);
     MaximumInscribedCircle mi;
     try {
@@ -98,7 +96,7 @@ double maximum_inscribed_ront_from_extremes(const PolarProfile& p, ExtremesScrat
     const double s2 = circle.scale * circle.scale;
     const double below = circle.outside_above / s2;
     const Point2 c = circle.center_d;
-    const double above = internal::polar_squared_distance(p, highest, c) * (1.0 - 64 * kU);
+    const double above = internal::polar_squared_distance(p, highest, c) * (1.0 - 64 * kUnitRoundoff);
     std::size_t added = 0, farthest = n;
     double far_d2 = -1.0;
     internal::distances_beyond(p, s, c, above, below, [&](std::size_t j, double x) {
@@ -110,7 +108,7 @@ double maximum_inscribed_ront_from_extremes(const PolarProfile& p, ExtremesScrat
       const Point2 q = polar_point(p, j);
       if (x * s2 < circle.inside_below ||
           internal::exact_side(circle, q) == CGAL::ON_BOUNDED_SIDE)
-        added += internal::add_with_neighbours(j, kNeighbours, n, s);
+        added += internal::add_with_neighbours(j, kSubsetNeighbours, n, s);
     });
     if (added > 0) continue;
     if (farthest == n) break;  // cannot happen (highest is visited); all points decide

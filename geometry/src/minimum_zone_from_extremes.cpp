@@ -14,6 +14,7 @@
 
 #include <cmath>
 
+#include "internal/extremal_circle.h"
 #include "internal/profile_extremes.h"
 #include "vcmm/geometry/minimum_zone.h"
 
@@ -21,14 +22,10 @@ namespace vcmm::geometry {
 namespace {
 
 constexpr const char* kCaller = "minimum_zone_ront_from_extremes";
-/// Unit roundoff of double.
-constexpr double kU = 0x1.0p-53;
-/// The band of S's first choice, as a fraction of the deviations' peak-to-valley (header).
-constexpr double kBand = 0.45;
-/// Neighbours taken either side of an extremum or a violator (header).
-constexpr std::size_t kNeighbours = 1;
-/// Fits on growing subsets before all points are fitted (typically 1, rarely 2).
-constexpr int kRounds = 6;
+using internal::kFirstBand;         // the subset policy: internal/profile_extremes.h
+using internal::kSubsetNeighbours;
+using internal::kSubsetRounds;
+using internal::kUnitRoundoff;
 
 }  // namespace
 
@@ -36,29 +33,29 @@ double minimum_zone_ront_from_extremes(const PolarProfile& p, ExtremesScratch& s
   const std::size_t n = p.size();
   const internal::ValueRange d = internal::deviation_ranges(p, s, kCaller);
   internal::clear_subset(n, s);
-  const double band = kBand * (d.hi - d.lo);
-  internal::add_deviation_extremes(p, s, d.hi - band, d.lo + band, kNeighbours);
+  const double band = kFirstBand * (d.hi - d.lo);
+  internal::add_deviation_extremes(p, s, d.hi - band, d.lo + band, kSubsetNeighbours);
   s.fell_back = false;
-  for (s.rounds = 1; s.rounds <= kRounds && s.subset_index.size() >= 8; ++s.rounds) {
+  for (s.rounds = 1; s.rounds <= kSubsetRounds && s.subset_index.size() >= 8; ++s.rounds) {
     internal::collect_subset(p, s);
     const MinimumZoneCircle mz = minimum_zone_circle(s.subset);
     const Point2 c = mz.center;
-    const double delta = kU * (std::fabs(c.x) + std::fabs(c.y));
+    const double delta = kUnitRoundoff * (std::fabs(c.x) + std::fabs(c.y));
     const double outer_in = (mz.outer_radius - 2 * delta) * (mz.outer_radius - 2 * delta);
     const double inner_out = (mz.inner_radius + 2 * delta) * (mz.inner_radius + 2 * delta);
     // Points outside S not proven inside the annulus join S (violators and the undecided).
     std::size_t added = 0;
     const internal::ValueRange r2 = internal::distances_beyond(
-        p, s, c, outer_in * (1.0 - 64 * kU), inner_out * (1.0 + 64 * kU),
+        p, s, c, outer_in * (1.0 - 64 * kUnitRoundoff), inner_out * (1.0 + 64 * kUnitRoundoff),
         [&](std::size_t j, double) {
-          if (!s.member[j]) added += internal::add_with_neighbours(j, kNeighbours, n, s);
+          if (!s.member[j]) added += internal::add_with_neighbours(j, kSubsetNeighbours, n, s);
         });
     if (added == 0) {
       s.center = c;
       return std::sqrt(r2.hi) - std::sqrt(r2.lo);
     }
   }
-  // All points (S too small to fit, or not settled after kRounds fits).
+  // All points (S too small to fit, or not settled after kSubsetRounds fits).
   s.fell_back = true;
   s.subset_index.resize(n);
   for (std::size_t j = 0; j < n; ++j) s.subset_index[j] = j;

@@ -26,14 +26,12 @@ namespace {
 // (and the same centre where the MI is unique: not on exact circles or symmetric lobes).
 TEST(MaximumInscribedFromExtremes, EqualsTheMaximumInscribedCircleOfAllPoints) {
   ExtremesScratch scratch;
-  const std::vector<std::size_t> sizes{8, 17, 64, 360, 3600};
   int fast_paths = 0, rounds_above_one = 0;
   for (std::uint64_t seed = 1; seed <= 300; ++seed) {
-    const auto regime = static_cast<test::PolarRegime>(seed % test::kPolarRegimes);
-    const std::size_t n = sizes[(seed / 6) % sizes.size()];
-    const PolarDirections directions = test::equiangular_directions(n);
-    const std::vector<double> d = test::polar_deviations(regime, n, seed);
-    const PolarProfile profile{85.5, d, &directions};
+    const test::PolarCase polar = test::polar_case(seed);
+    const auto regime = polar.regime;
+    const std::size_t n = polar.n;
+    const PolarProfile profile = polar.profile();
     std::vector<Point2> points(n);
     for (std::size_t j = 0; j < n; ++j) points[j] = polar_point(profile, j);
     const MaximumInscribedCircle full = maximum_inscribed_circle(points);

@@ -46,14 +46,11 @@ Reference full_minimum_zone(const PolarProfile& p) {
 // it, and RONt within 1e-12 mm of the fitter's own value, in every regime.
 TEST(MinimumZoneFromExtremes, EqualsTheMinimumZoneOfAllPoints) {
   ExtremesScratch scratch;
-  const std::vector<std::size_t> sizes{8, 17, 64, 360, 3600};
   int rounds_above_one = 0;
   for (std::uint64_t seed = 1; seed <= 300; ++seed) {
-    const auto regime = static_cast<test::PolarRegime>(seed % test::kPolarRegimes);
-    const std::size_t n = sizes[(seed / 6) % sizes.size()];
-    const PolarDirections directions = test::equiangular_directions(n);
-    const std::vector<double> d = test::polar_deviations(regime, n, seed);
-    const PolarProfile profile{85.5, d, &directions};
+    const test::PolarCase polar = test::polar_case(seed);
+    const std::size_t n = polar.n;
+    const PolarProfile profile = polar.profile();
     const Reference full = full_minimum_zone(profile);
     const double fast = minimum_zone_ront_from_extremes(profile, scratch);
     EXPECT_EQ(scratch.center, full.center) << "seed " << seed << ", n " << n;

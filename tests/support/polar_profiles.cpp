@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <utility>
 
@@ -59,6 +60,12 @@ std::vector<double> polar_deviations(PolarRegime regime, std::size_t n, std::uin
     }
   }
   return d;
+}
+
+PolarCase polar_case(std::uint64_t seed) {
+  const auto regime = static_cast<PolarRegime>(seed % kPolarRegimes);
+  const std::size_t n = kPolarCaseSizes[(seed / 6) % std::size(kPolarCaseSizes)];
+  return {regime, n, equiangular_directions(n), polar_deviations(regime, n, seed)};
 }
 
 }  // namespace vcmm::test

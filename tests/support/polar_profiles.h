@@ -27,4 +27,17 @@ inline constexpr int kPolarRegimes = 6;
 /// n deviations (mm) of the regime.
 std::vector<double> polar_deviations(PolarRegime regime, std::size_t n, std::uint64_t seed);
 
+/// One case of the *_from_extremes tests' seed sweep: the regime seed mod kPolarRegimes, the
+/// size kPolarCaseSizes[(seed / 6) mod 5], equiangular directions, the regime's deviations.
+inline constexpr std::size_t kPolarCaseSizes[] = {8, 17, 64, 360, 3600};
+struct PolarCase {
+  PolarRegime regime;
+  std::size_t n;
+  geometry::PolarDirections directions;
+  std::vector<double> deviation;
+  /// The profile about radius 85.5 mm (it refers to this case's directions and deviations).
+  geometry::PolarProfile profile() const { return {85.5, deviation, &directions}; }
+};
+PolarCase polar_case(std::uint64_t seed);
+
 }  // namespace vcmm::test

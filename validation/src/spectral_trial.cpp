@@ -487,6 +487,7 @@ SpectralRingTrial::SpectralRingTrial(std::shared_ptr<const SpectralRingModel> mo
   a_.assign(model_->order_ + 1, 0.0);
   b_.assign(model_->order_ + 1, 0.0);
   synthesized_.assign(model_->n_, 0.0);
+  harmonics_.resize(model_->response_.rows());  // the product's output, sized once
   points_.resize(model_->n_);
 }
 
@@ -522,7 +523,6 @@ RingMeasurands SpectralRingTrial::measurands(const em::ErrorDraw& draw,
   std::fill(a_.begin(), a_.end(), 0.0);
   std::fill(b_.begin(), b_.end(), 0.0);
   if (m.response_.rows() > 0) {
-    harmonics_.resize(m.response_.rows());
     internal::column_major_product(m.response_.data(),
                                    static_cast<std::size_t>(m.response_.rows()),
                                    static_cast<std::size_t>(m.response_.cols()), theta_.data(),

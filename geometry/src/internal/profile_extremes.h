@@ -17,6 +17,15 @@ namespace vcmm::geometry::internal {
 /// Points per block of ExtremesScratch::peak_hi / valley_lo.
 inline constexpr std::size_t kRangeBlock = 16;
 
+/// The subset policy both *_from_extremes functions follow (their headers give the argument):
+/// S starts with the extrema within this fraction of the deviations' peak-to-valley of the
+/// top (MZ) or the bottom (MZ and MI),
+inline constexpr double kFirstBand = 0.45;
+/// takes this many neighbours either side of an extremum or a violator,
+inline constexpr std::size_t kSubsetNeighbours = 1;
+/// and is fitted at most this many times (typically once, rarely twice) before all points are.
+inline constexpr int kSubsetRounds = 6;
+
 struct ValueRange {
   double lo = 0.0, hi = 0.0;
 };

@@ -75,6 +75,24 @@ constexpr int near_circle_degree(double s_bound) {
                                            : 0;
 }
 
+/// Whether the kernel may be used about `radius`: 2⁻⁵⁰⁰ ≤ radius ≤ 2⁵⁰⁰ (R₀² and the products
+/// of near_circle_about stay normal and exact).
+constexpr bool near_circle_radius_ok(double radius) {
+  return radius >= 0x1p-500 && radius <= 0x1p500;
+}
+
+/// The degree for a pass about `radius` whose distances r are expected within deviation_bound
+/// of it: |r/R₀ − 1| ≤ t = deviation_bound/radius + 2⁻²⁵ (R₀'s rounding), so |s| = |(r/R₀)² − 1|
+/// ≤ t (2 + t), plus 2⁻⁵⁰ for the rounding of q. 0 (square root and division) where no degree
+/// covers that or the radius is out of range; a bound that is not a number ≥ 0 (unknown) gives
+/// degree 6. The pass checks |s| all the same: a wrong bound costs a redo, never accuracy.
+inline int near_circle_degree_for(double radius, double deviation_bound) {
+  if (!near_circle_radius_ok(radius)) return 0;
+  if (!(deviation_bound >= 0.0)) return 6;
+  const double t = deviation_bound / radius + 0x1p-25;
+  return near_circle_degree(t * (2.0 + t) + 0x1p-50);
+}
+
 /// The constants of one pass about a reference radius.
 struct NearCircle {
   double r0 = 0.0;         ///< R₀: the radius rounded to 26 significant bits

@@ -267,7 +267,7 @@ struct PassLanes {
   V smax{};
 };
 
-/// The pass's work on W points (V = Lanes<W>) or one (V = double) at p.
+/// The pass's work on the W points at i (V = Lanes<W>) or the one (V = double).
 template <bool kFull, int D, class V>
 [[gnu::always_inline]] inline void pass_points(const PassInput& in, std::size_t i,
                                                PassLanes<V>& a) {

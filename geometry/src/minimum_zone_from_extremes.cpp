@@ -12,11 +12,15 @@
 // fit decides it.
 #include "vcmm/geometry/minimum_zone_from_extremes.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "internal/extremal_circle.h"
 #include "internal/profile_extremes.h"
 #include "vcmm/geometry/minimum_zone.h"
+#include "vcmm/geometry/point.h"
 
 namespace vcmm::geometry {
 namespace {
@@ -26,6 +30,7 @@ using internal::kFirstBand;         // the subset policy: internal/profile_extre
 using internal::kSubsetNeighbours;
 using internal::kSubsetRounds;
 using internal::kUnitRoundoff;
+using internal::kRangeBlock;
 
 }  // namespace
 
@@ -64,6 +69,83 @@ double minimum_zone_ront_from_extremes(const PolarProfile& p, ExtremesScratch& s
   const internal::ValueRange r2 =
       internal::distances_beyond(p, s, s.center, 0.0, 0.0, [](std::size_t, double) {});
   return std::sqrt(r2.hi) - std::sqrt(r2.lo);
+}
+
+namespace {
+
+constexpr const char* kPointsCaller = "minimum_zone_ront_from_extremes (points)";
+
+/// The points of S, in the order they joined.
+void collect_points(std::span<const Point2> points, ExtremesScratch& s) {
+  s.subset.resize(s.subset_index.size());
+  for (std::size_t i = 0; i < s.subset_index.size(); ++i) s.subset[i] = points[s.subset_index[i]];
+}
+
+}  // namespace
+
+double minimum_zone_ront_from_extremes(std::span<const Point2> points, Point2 origin,
+                                       ExtremesScratch& s) {
+  const std::size_t n = points.size();
+  if (n < 8)
+    throw InvalidInput(std::string(kPointsCaller) + ": needs at least 8 points; got " +
+                       std::to_string(n));
+  // D_o about the origin (the seeds' ranking only) and its local extremes per block; their
+  // sum is finite exactly when every D_o is (a non-finite coordinate, or a square beyond the
+  // range, is not).
+  s.distance2.resize(n);
+  internal::squared_distances(points, origin, s.distance2.data(), s);
+  const bool fast = std::isfinite(internal::local_extremes(s.distance2, s));
+  if (!fast) validate_profile(points, 8, kPointsCaller);  // names a non-finite point
+  internal::clear_subset(n, s);
+  s.fell_back = false;
+  s.rounds = 0;
+  if (fast) {
+    double hi = s.peak_hi[0], lo = s.valley_lo[0];  // the global extremes are local ones
+    for (std::size_t b = 1; b < s.peak_hi.size(); ++b) {
+      hi = std::max(hi, s.peak_hi[b]);
+      lo = std::min(lo, s.valley_lo[b]);
+    }
+    const double band = kFirstBand * (hi - lo);
+    internal::add_value_extremes(s.distance2, s, hi - band, lo + band, kSubsetNeighbours);
+    for (s.rounds = 1; s.rounds <= kSubsetRounds && s.subset_index.size() >= 8; ++s.rounds) {
+      collect_points(points, s);
+      MinimumZoneCircle mz;
+      try {
+        mz = minimum_zone_circle(s.subset);
+      } catch (const std::exception&) {
+        break;  // S collinear or nearly straight: all points decide (and name the problem)
+      }
+      // The containment test of the polar overload (file comment), on every point: one
+      // vectorised pass with each block's range; only the blocks reaching beyond the proven
+      // band (those of S's contacts, and violators) are looked at point by point.
+      const Point2 c = mz.center;
+      const double delta = kUnitRoundoff * (std::fabs(c.x) + std::fabs(c.y));
+      const double outer_in = (mz.outer_radius - 2 * delta) * (mz.outer_radius - 2 * delta);
+      const double inner_out = (mz.inner_radius + 2 * delta) * (mz.inner_radius + 2 * delta);
+      const double above = outer_in * (1.0 - 64 * kUnitRoundoff);
+      const double below = inner_out * (1.0 + 64 * kUnitRoundoff);
+      internal::squared_distances(points, c, s.distance2.data(), s);
+      std::size_t added = 0;
+      for (std::size_t b = 0; b < s.peak_hi.size(); ++b) {
+        if (!(s.peak_hi[b] > above) && !(s.valley_lo[b] < below)) continue;
+        const std::size_t last = std::min(n, (b + 1) * kRangeBlock);
+        for (std::size_t j = b * kRangeBlock; j < last; ++j) {
+          const double v = s.distance2[j];
+          if ((v > above || v < below) && !s.member[j])
+            added += internal::add_with_neighbours(j, kSubsetNeighbours, n, s);
+        }
+      }
+      if (added == 0) {
+        s.center = c;
+        return mz.ron.ront;
+      }
+    }
+  }
+  // All points (not all finite squares, S too small or degenerate, or not settled).
+  s.fell_back = true;
+  const MinimumZoneCircle mz = minimum_zone_circle(points);
+  s.center = mz.center;
+  return mz.ron.ront;
 }
 
 }  // namespace vcmm::geometry

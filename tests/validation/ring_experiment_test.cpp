@@ -160,6 +160,23 @@ TEST(RingExperiment, SameSeedSameNumbersWhateverTheThreadCount) {
   EXPECT_NE(one.monte_carlo.samples, other.monte_carlo.samples);
 }
 
+em::DigitalModel example_model() {
+  return em::read_digital_model_file(std::string(VCMM_SOURCE_DIR) + "/examples/cmm_model.json");
+}
+
+/// A scan of the seed study's ring with n points where the example model's axes reach it.
+em::Measurement example_scan(Eigen::Index n) {
+  em::RingGauge g;
+  g.form = em::seed_study_ring_form();
+  em::RingSampling sampling;
+  sampling.points = n;
+  sampling.mode = em::ProbingMode::scanning;
+  sampling.placement.location_mm = {600.0, 500.0, 250.0};
+  sampling.stylus_offset_mm = {0.0, 0.0, -100.0};
+  sampling.temperature_c = 20.3;
+  return em::ring_gauge_measurement(g, sampling);
+}
+
 /// The ring trial as it drew before the x, y noise rule: 3N noise numbers a trial (x, y, z per
 /// point; the z never read), everything else as RingTrial.
 uncertainty::ExperimentFactory xyz_noise_factory(const em::DigitalModel& model,
@@ -190,17 +207,8 @@ uncertainty::ExperimentFactory xyz_noise_factory(const em::DigitalModel& model,
 // errors of their difference, u·√(2 · 1/(2(M − 1))). The noise-only case would see a
 // wrong σ (e.g. √(2/3) of it: u of RONt ~18 % lower, ~10 standard errors at M = 3000).
 TEST(RingExperiment, XyNoiseDrawsGiveTheDistributionOfTheXyzDraws) {
-  const em::DigitalModel model =
-      em::read_digital_model_file(std::string(VCMM_SOURCE_DIR) + "/examples/cmm_model.json");
-  em::RingGauge g;
-  g.form = em::seed_study_ring_form();
-  em::RingSampling sampling;
-  sampling.points = 720;
-  sampling.mode = em::ProbingMode::scanning;
-  sampling.placement.location_mm = {600.0, 500.0, 250.0};
-  sampling.stylus_offset_mm = {0.0, 0.0, -100.0};
-  sampling.temperature_c = 20.3;
-  const em::Measurement best = em::ring_gauge_measurement(g, sampling);
+  const em::DigitalModel model = example_model();
+  const em::Measurement best = example_scan(720);
   RingEvaluationOptions options;  // 50 UPR, MZ
   constexpr std::uint64_t kTrials = 3000;
   for (const em::Stages& stages : {em::Stages::all(), em::Stages::only(em::ErrorSource::noise)}) {
@@ -228,6 +236,35 @@ TEST(RingExperiment, XyNoiseDrawsGiveTheDistributionOfTheXyzDraws) {
         EXPECT_NEAR(a.standard_uncertainty, b.standard_uncertainty, 4.5 * se_u);
       }
     }
+  }
+}
+
+// The trial's MZ RONt (from the filtered profile's extremes, minimum_zone_from_extremes.h)
+// is bit for bit that of the minimum-zone fit of all filtered points (evaluate_ring_profile's
+// full fit), on 40 simulated trial profiles of the example model at 3 600 points.
+TEST(RingExperiment, MinimumZoneRontIsTheFullFitsBitForBit) {
+  const em::DigitalModel model = example_model();
+  const em::Measurement best = example_scan(3600);
+  RingEvaluationOptions options;  // 50 UPR, MZ
+  ASSERT_EQ(options.reference, ReferenceCircle::minimum_zone);
+  auto trial = ring_experiment_factory(model, best, options, em::Stages::all())();
+  const em::PreparedMeasurement prepared(best, model);
+  for (std::uint64_t t = 0; t < 40; ++t) {
+    uncertainty::RandomStream rng(77, t);
+    internal::StreamRandomSource source(rng);
+    em::ErrorDraw draw;
+    em::draw_errors(model, prepared, source, em::Stages::all(), draw, em::NoiseComponents::xy);
+    std::vector<geometry::Point2> profile;
+    em::simulate_corrected(prepared, model, draw, em::Stages::all(), em::Formula::first_order,
+                           profile);
+    EXPECT_EQ(evaluate_ring(profile, options).roundness_mm,
+              evaluate_ring_profile(profile, options).measurands.roundness_mm)
+        << "trial " << t;
+    // And the trial itself computes exactly this.
+    uncertainty::RandomStream same(77, t);
+    std::array<double, ring_measurand_count> y{};
+    trial(same, y);
+    EXPECT_EQ(y[roundness], evaluate_ring(profile, options).roundness_mm) << "trial " << t;
   }
 }
 

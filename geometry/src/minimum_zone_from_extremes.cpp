@@ -14,8 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <string>
+#include <optional>
 
 #include "internal/extremal_circle.h"
 #include "internal/profile_extremes.h"
@@ -71,44 +70,19 @@ double minimum_zone_ront_from_extremes(const PolarProfile& p, ExtremesScratch& s
   return std::sqrt(r2.hi) - std::sqrt(r2.lo);
 }
 
-namespace {
-
-constexpr const char* kPointsCaller = "minimum_zone_ront_from_extremes (points)";
-
-/// The points of S, in the order they joined.
-void collect_points(std::span<const Point2> points, ExtremesScratch& s) {
-  s.subset.resize(s.subset_index.size());
-  for (std::size_t i = 0; i < s.subset_index.size(); ++i) s.subset[i] = points[s.subset_index[i]];
-}
-
-}  // namespace
-
 double minimum_zone_ront_from_extremes(std::span<const Point2> points, Point2 origin,
                                        ExtremesScratch& s) {
   const std::size_t n = points.size();
-  if (n < 8)
-    throw InvalidInput(std::string(kPointsCaller) + ": needs at least 8 points; got " +
-                       std::to_string(n));
-  // D_o about the origin (the seeds' ranking only) and its local extremes per block; their
-  // sum is finite exactly when every D_o is (a non-finite coordinate, or a square beyond the
-  // range, is not).
-  s.distance2.resize(n);
-  internal::squared_distances(points, origin, s.distance2.data(), s);
-  const bool fast = std::isfinite(internal::local_extremes(s.distance2, s));
-  if (!fast) validate_profile(points, 8, kPointsCaller);  // names a non-finite point
-  internal::clear_subset(n, s);
+  const std::optional<internal::ValueRange> range = internal::origin_distance_extremes(
+      points, origin, s, "minimum_zone_ront_from_extremes (points)");
   s.fell_back = false;
   s.rounds = 0;
-  if (fast) {
-    double hi = s.peak_hi[0], lo = s.valley_lo[0];  // the global extremes are local ones
-    for (std::size_t b = 1; b < s.peak_hi.size(); ++b) {
-      hi = std::max(hi, s.peak_hi[b]);
-      lo = std::min(lo, s.valley_lo[b]);
-    }
+  if (range) {
+    const double hi = range->hi, lo = range->lo;
     const double band = kFirstBand * (hi - lo);
     internal::add_value_extremes(s.distance2, s, hi - band, lo + band, kSubsetNeighbours);
     for (s.rounds = 1; s.rounds <= kSubsetRounds && s.subset_index.size() >= 8; ++s.rounds) {
-      collect_points(points, s);
+      internal::collect_subset(points, s);
       MinimumZoneCircle mz;
       try {
         mz = minimum_zone_circle(s.subset);

@@ -239,32 +239,35 @@ TEST(RingExperiment, XyNoiseDrawsGiveTheDistributionOfTheXyzDraws) {
   }
 }
 
-// The trial's MZ RONt (from the filtered profile's extremes, minimum_zone_from_extremes.h)
-// is bit for bit that of the minimum-zone fit of all filtered points (evaluate_ring_profile's
-// full fit), on 40 simulated trial profiles of the example model at 3 600 points.
-TEST(RingExperiment, MinimumZoneRontIsTheFullFitsBitForBit) {
+// The trial's MZ and MI RONt (from the filtered profile's extremes, *_from_extremes.h) are
+// bit for bit those of the fits of all filtered points (evaluate_ring_profile's full fit), on
+// 40 simulated trial profiles of the example model at 3 600 points each.
+TEST(RingExperiment, MinimumZoneAndInscribedRontAreTheFullFitsBitForBit) {
   const em::DigitalModel model = example_model();
   const em::Measurement best = example_scan(3600);
-  RingEvaluationOptions options;  // 50 UPR, MZ
-  ASSERT_EQ(options.reference, ReferenceCircle::minimum_zone);
-  auto trial = ring_experiment_factory(model, best, options, em::Stages::all())();
   const em::PreparedMeasurement prepared(best, model);
-  for (std::uint64_t t = 0; t < 40; ++t) {
-    uncertainty::RandomStream rng(77, t);
-    internal::StreamRandomSource source(rng);
-    em::ErrorDraw draw;
-    em::draw_errors(model, prepared, source, em::Stages::all(), draw, em::NoiseComponents::xy);
-    std::vector<geometry::Point2> profile;
-    em::simulate_corrected(prepared, model, draw, em::Stages::all(), em::Formula::first_order,
-                           profile);
-    EXPECT_EQ(evaluate_ring(profile, options).roundness_mm,
-              evaluate_ring_profile(profile, options).measurands.roundness_mm)
-        << "trial " << t;
-    // And the trial itself computes exactly this.
-    uncertainty::RandomStream same(77, t);
-    std::array<double, ring_measurand_count> y{};
-    trial(same, y);
-    EXPECT_EQ(y[roundness], evaluate_ring(profile, options).roundness_mm) << "trial " << t;
+  for (const ReferenceCircle reference :
+       {ReferenceCircle::minimum_zone, ReferenceCircle::maximum_inscribed}) {
+    RingEvaluationOptions options;  // 50 UPR
+    options.reference = reference;
+    auto trial = ring_experiment_factory(model, best, options, em::Stages::all())();
+    for (std::uint64_t t = 0; t < 40; ++t) {
+      uncertainty::RandomStream rng(77, t);
+      internal::StreamRandomSource source(rng);
+      em::ErrorDraw draw;
+      em::draw_errors(model, prepared, source, em::Stages::all(), draw, em::NoiseComponents::xy);
+      std::vector<geometry::Point2> profile;
+      em::simulate_corrected(prepared, model, draw, em::Stages::all(), em::Formula::first_order,
+                             profile);
+      EXPECT_EQ(evaluate_ring(profile, options).roundness_mm,
+                evaluate_ring_profile(profile, options).measurands.roundness_mm)
+          << "trial " << t;
+      // And the trial itself computes exactly this.
+      uncertainty::RandomStream same(77, t);
+      std::array<double, ring_measurand_count> y{};
+      trial(same, y);
+      EXPECT_EQ(y[roundness], evaluate_ring(profile, options).roundness_mm) << "trial " << t;
+    }
   }
 }
 

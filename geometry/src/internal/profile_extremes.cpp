@@ -269,6 +269,34 @@ std::size_t add_with_neighbours(std::size_t j, std::size_t neighbours, std::size
   return added;
 }
 
+std::optional<ValueRange> origin_distance_extremes(std::span<const Point2> points, Point2 origin,
+                                                   ExtremesScratch& s, const char* caller) {
+  const std::size_t n = points.size();
+  if (n < 8)
+    throw InvalidInput(std::string(caller) + ": needs at least 8 points; got " +
+                       std::to_string(n));
+  s.distance2.resize(n);
+  squared_distances(points, origin, s.distance2.data(), s);
+  // The sum of the D_o is finite exactly when every one is.
+  const bool finite = std::isfinite(local_extremes(s.distance2, s));
+  clear_subset(n, s);
+  if (!finite) {
+    validate_profile(points, 8, caller);  // names a non-finite point
+    return std::nullopt;
+  }
+  ValueRange r{s.valley_lo[0], s.peak_hi[0]};  // the global extremes are local ones
+  for (std::size_t b = 1; b < s.peak_hi.size(); ++b) {
+    r.hi = std::max(r.hi, s.peak_hi[b]);
+    r.lo = std::min(r.lo, s.valley_lo[b]);
+  }
+  return r;
+}
+
+void collect_subset(std::span<const Point2> points, ExtremesScratch& s) {
+  s.subset.resize(s.subset_index.size());
+  for (std::size_t i = 0; i < s.subset_index.size(); ++i) s.subset[i] = points[s.subset_index[i]];
+}
+
 void collect_subset(const PolarProfile& p, ExtremesScratch& s) {
   s.subset.resize(s.subset_index.size());
   for (std::size_t i = 0; i < s.subset_index.size(); ++i)

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <span>
 
 #include "vcmm/geometry/polar_profile.h"
@@ -128,6 +129,18 @@ ValueRange distances_beyond(const PolarProfile& p, const ExtremesScratch& s, Poi
   }
   return r;
 }
+
+/// The first pass of the points overloads of the *_from_extremes functions: at least 8
+/// points (else InvalidInput naming `caller`), D_o = D̃ about `origin` into s.distance2 and its
+/// local extremes per block (s.peak_hi, s.valley_lo), S := ∅. Returns the range of D_o, or
+/// nullopt when some D_o is not finite though every coordinate is (squares beyond the double
+/// range: the caller fits all points); a non-finite coordinate throws InvalidInput naming
+/// `caller` and the point.
+std::optional<ValueRange> origin_distance_extremes(std::span<const Point2> points, Point2 origin,
+                                                   ExtremesScratch& s, const char* caller);
+
+/// s.subset := the points of S (in the order they joined), for a profile given as points.
+void collect_subset(std::span<const Point2> points, ExtremesScratch& s);
 
 /// S := ∅ for a profile of n points.
 void clear_subset(std::size_t n, ExtremesScratch& s);

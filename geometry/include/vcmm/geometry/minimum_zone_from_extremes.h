@@ -58,8 +58,9 @@ double minimum_zone_ront_from_extremes(const PolarProfile& p, ExtremesScratch& s
 /// deviation bounds to skip blocks with). `origin` (finite; e.g. the filter centre) and the
 /// order of the points (consecutive points near each other, e.g. angular order) only steer
 /// the speed: any order and any origin give the same, exact result.
-/// Preconditions: ≥ 8 finite points, not all collinear (InvalidInput naming the function and
-/// the rule); throws as minimum_zone_circle. Complexity: two vectorised O(n) passes and the
+/// Preconditions: ≥ 8 finite points (InvalidInput naming this function and the rule or the
+/// point); otherwise throws as minimum_zone_circle(points) (e.g. collinear points, in its
+/// name). Complexity: two vectorised O(n) passes and the
 /// minimum zone of |S| points (~1 fit a call on a filtered 3 600-point ring).
 double minimum_zone_ront_from_extremes(std::span<const Point2> points, Point2 origin,
                                        ExtremesScratch& s);

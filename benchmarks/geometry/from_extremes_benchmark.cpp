@@ -6,7 +6,8 @@
 // 2 µm/k and random phases (a filtered form with µm peak-to-valley), 64 such profiles cycled
 // (fixed seed). BM_*FromExtremes: the subset functions on the PolarProfile (deviations only);
 // BM_*AllPoints: building the 3600 points and the fitter on all of them, the path they
-// replace. Results and machine: docs/performance.md ("The spectral trial's reference fits").
+// replace; BM_MinimumZonePointsFromExtremes: building them and the points overload (the exact
+// trial's path). Results and machine: docs/performance.md ("The spectral trial's reference fits").
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -83,6 +84,16 @@ void BM_MinimumZoneAllPoints(benchmark::State& state) {
   run(state, [](const g::PolarProfile& p) { return g::minimum_zone_circle(points_of(p)).ron.ront; });
 }
 BENCHMARK(BM_MinimumZoneAllPoints)->Unit(benchmark::kMicrosecond);
+
+// The points overload (the exact trial's path: a filtered profile as points about the filter
+// centre), with the points built as for BM_MinimumZoneAllPoints.
+void BM_MinimumZonePointsFromExtremes(benchmark::State& state) {
+  g::ExtremesScratch scratch;
+  run(state, [&](const g::PolarProfile& p) {
+    return g::minimum_zone_ront_from_extremes(points_of(p), {0.0, 0.0}, scratch);
+  });
+}
+BENCHMARK(BM_MinimumZonePointsFromExtremes)->Unit(benchmark::kMicrosecond);
 
 void BM_MaximumInscribedFromExtremes(benchmark::State& state) {
   g::ExtremesScratch scratch;

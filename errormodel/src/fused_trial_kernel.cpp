@@ -41,8 +41,8 @@ template <int D, bool kXyz, int DR>
     double ex = 0.0, ey = 0.0, ez = 0.0;
     bad += first_order_error<D, kXyz, DR>(k, w0, w1, w2, ex, ey, ez);
     const double sh = shift[i];
-    const double cx = t00 * ex + t01 * ey + sh * nx[i] + z[3 * i];
-    const double cy = t10 * ex + t11 * ey + sh * ny[i] + z[3 * i + 1];
+    const double cx = t00 * ex + t01 * ey + sh * nx[i] + z[kStride * i];
+    const double cy = t10 * ex + t11 * ey + sh * ny[i] + z[kStride * i + 1];
     out[kStride * i] = (qx + cx) * inverse_scale;
     out[kStride * i + 1] = (qy + cy) * inverse_scale;
     if constexpr (kXyz) {

@@ -177,6 +177,20 @@ void check_draw_size(Eigen::Index got, Eigen::Index want, const char* what,
                        "stage switched on)");
 }
 
+/// The draw's noise has `rows` rows (3: x, y, z; 2: x, y only) and N columns, or the stage is
+/// off. Every form needs N columns; all but the first-order x, y form need 3 rows.
+void check_noise(const ErrorDraw& draw, Eigen::Index n, bool xy_only, const char* caller) {
+  check_draw_size(draw.noise_mm.cols(), n, "noise", caller);
+  const Eigen::Index rows = draw.noise_mm.rows();
+  if (rows == 3 || (rows == 2 && xy_only)) return;
+  if (rows == 2)
+    throw InvalidInput(std::string(caller) +
+                       ": the draw's noise holds x, y only (drawn for the x, y form); this "
+                       "form needs x, y and z (draw it with all three components)");
+  throw InvalidInput(std::string(caller) + ": the draw's noise has " + std::to_string(rows) +
+                     " rows; it needs 3 (x, y, z) or, for the x, y form, 2");
+}
+
 /// The probe errors `a` − `b`, coefficient by coefficient: δr + D is linear in them.
 ProbeErrors probe_difference(const ProbeErrors& a, const ProbeErrors& b) {
   ProbeErrors d;
@@ -239,10 +253,22 @@ const Zeros& thread_zeros(Eigen::Index n) {
   return zeros;
 }
 
+/// The x, y noise of the x, y form, point i's (x, y) at [2i, 2i + 1]: the draw's own storage
+/// when it holds x, y only, else its x and y rows copied into a per-thread array; zeros when
+/// the stage is off.
+const double* xy_noise(const ErrorDraw& draw, bool noise, Eigen::Index n) {
+  if (!noise) return thread_zeros(n).xyz.data();
+  if (draw.noise_mm.rows() == 2) return draw.noise_mm.data();
+  thread_local Eigen::Matrix2Xd xy;
+  xy = draw.noise_mm.topRows<2>();
+  return xy.data();
+}
+
 /// The corrected coordinates of the fused trial (virtual_cmm.h) for points [0, n): the
 /// machine-axis terms e (kinematic, machine axes), shift (probe, along the normal) and z
 /// (noise), every one an array of zeros when its stage is off. kXyz: write x, y, z with
-/// stride 3 (a Measurement), else x, y with stride 2 (Point2). No branch in the loop.
+/// stride 3 (a Measurement) from x, y, z noise, else x, y with stride 2 (Point2) from x, y
+/// noise (xy_noise). No branch in the loop.
 template <bool kXyz>
 void fused_points(Eigen::Index n, const double* __restrict p, const double* __restrict nv,
                   const double* __restrict rough, const double* __restrict e,
@@ -257,8 +283,8 @@ void fused_points(Eigen::Index n, const double* __restrict p, const double* __re
     const double ex = e[3 * i], ey = e[3 * i + 1];
     const double qx = (p[3 * i] + t * nx) * scale;
     const double qy = (p[3 * i + 1] + t * ny) * scale;
-    const double cx = t00 * ex + t01 * ey + sh * nx + z[3 * i];
-    const double cy = t10 * ex + t11 * ey + sh * ny + z[3 * i + 1];
+    const double cx = t00 * ex + t01 * ey + sh * nx + z[kStride * i];
+    const double cy = t10 * ex + t11 * ey + sh * ny + z[kStride * i + 1];
     out[kStride * i] = (qx + cx) * inverse_scale;
     out[kStride * i + 1] = (qy + cy) * inverse_scale;
     if constexpr (kXyz) {
@@ -284,7 +310,7 @@ void fused_trial(const Measurement& m, const DigitalModel& model, const ErrorDra
   const bool probe = stages.is_enabled(ErrorSource::probe);
   const bool noise = stages.is_enabled(ErrorSource::noise);
   if (roughness) check_draw_size(draw.roughness_mm.size(), n, "roughness", caller);
-  if (noise) check_draw_size(draw.noise_mm.cols(), n, "noise", caller);
+  if (noise) check_noise(draw, n, !kXyz, caller);
   if (probe) check_probe(draw.probe, caller);
 
   const Eigen::Matrix3d r = m.placement.rotation();
@@ -321,8 +347,9 @@ void fused_trial(const Measurement& m, const DigitalModel& model, const ErrorDra
     probe_shifts(probe_difference(draw.probe, nominal_probe(model.probe)), m, 1.0, scratch.shift);
   fused_points<kXyz>(n, p, nv, rough, kinematic ? scratch.e.data() : zeros.xyz.data(),
                      probe ? scratch.shift.data() : zeros.scalar.data(),
-                     noise ? draw.noise_mm.data() : zeros.xyz.data(), scale, inverse_scale, r,
-                     out);
+                     kXyz ? (noise ? draw.noise_mm.data() : zeros.xyz.data())
+                          : xy_noise(draw, noise, n),
+                     scale, inverse_scale, r, out);
 }
 
 }  // namespace
@@ -377,8 +404,8 @@ void prepared_points(const PreparedMeasurement& pm, const double* __restrict rou
     const double ex = e[3 * i], ey = e[3 * i + 1];
     const double qx = (px[i] + t * nx[i]) * scale;
     const double qy = (py[i] + t * ny[i]) * scale;
-    const double cx = t00 * ex + t01 * ey + sh * nx[i] + z[3 * i];
-    const double cy = t10 * ex + t11 * ey + sh * ny[i] + z[3 * i + 1];
+    const double cx = t00 * ex + t01 * ey + sh * nx[i] + z[kStride * i];
+    const double cy = t10 * ex + t11 * ey + sh * ny[i] + z[kStride * i + 1];
     out[kStride * i] = (qx + cx) * inverse_scale;
     out[kStride * i + 1] = (qy + cy) * inverse_scale;
     if constexpr (kXyz) {
@@ -414,7 +441,7 @@ bool prepared_trial(const PreparedMeasurement& pm, const DigitalModel& model,
   const bool probe = stages.is_enabled(ErrorSource::probe);
   const bool noise = stages.is_enabled(ErrorSource::noise);
   if (roughness) check_draw_size(draw.roughness_mm.size(), n, "roughness", caller);
-  if (noise) check_draw_size(draw.noise_mm.cols(), n, "noise", caller);
+  if (noise) check_noise(draw, n, !kXyz, caller);
   if (probe) check_probe(draw.probe, caller);
   const ProbeErrors shift =
       probe ? probe_difference(draw.probe, nominal_probe(model.probe)) : ProbeErrors{};
@@ -430,6 +457,8 @@ bool prepared_trial(const PreparedMeasurement& pm, const DigitalModel& model,
   Scratch& scratch = thread_scratch(n);
   const Zeros& zeros = thread_zeros(n);
   const double* rough = roughness ? draw.roughness_mm.data() : zeros.scalar.data();
+  const double* z = kXyz ? (noise ? draw.noise_mm.data() : zeros.xyz.data())
+                         : xy_noise(draw, noise, n);
   if (kinematic) {
     // One pass over the points (internal/fused_trial_kernel.h), the probe shifts first.
     const internal::FirstOrderKernel kernel = internal::first_order_kernel(
@@ -454,7 +483,7 @@ bool prepared_trial(const PreparedMeasurement& pm, const DigitalModel& model,
     in.nz = PreparedAccess::column(pm, 5);
     in.roughness = rough;
     in.shift = scratch.shift.data();
-    in.noise = noise ? draw.noise_mm.data() : zeros.xyz.data();
+    in.noise = z;
     in.scale = scale;
     in.inverse_scale = inverse_scale;
     in.rotation = r;
@@ -473,7 +502,7 @@ bool prepared_trial(const PreparedMeasurement& pm, const DigitalModel& model,
   }
   prepared_points_dispatch<kXyz>(
       std::make_integer_sequence<int, max_probe_harmonic_order + 1>{}, pm.probe_order(), pm,
-      rough, zeros.xyz.data(), noise ? draw.noise_mm.data() : zeros.xyz.data(), shift, scale,
+      rough, zeros.xyz.data(), z, shift, scale,
       inverse_scale, r, out);
   return true;
 }
@@ -517,7 +546,7 @@ ErrorDraw nominal_errors(const DigitalModel& model, const Measurement& m) {
 namespace {
 /// draw_errors on a measurement whose points have been validated.
 void draw_errors_validated(const DigitalModel& model, const Measurement& m, RandomSource& rng,
-                           const Stages& stages, ErrorDraw& out) {
+                           const Stages& stages, ErrorDraw& out, NoiseComponents components) {
   const bool temperature = stages.is_enabled(ErrorSource::temperature);
   const bool probe = stages.is_enabled(ErrorSource::probe);
   const ProbeModel& pm = model.probe;
@@ -558,8 +587,9 @@ void draw_errors_validated(const DigitalModel& model, const Measurement& m, Rand
     out.roughness_mm.resize(0);
   }
   if (stages.is_enabled(ErrorSource::noise)) {
-    out.noise_mm.resize(3, n);
-    rng.fill_normal(std::span<double>(out.noise_mm.data(), static_cast<std::size_t>(3 * n)),
+    const Eigen::Index rows = components == NoiseComponents::xy ? 2 : 3;
+    out.noise_mm.resize(rows, n);
+    rng.fill_normal(std::span<double>(out.noise_mm.data(), static_cast<std::size_t>(rows * n)),
                     noise_sigma_mm(model, m.mode));
   } else {
     out.noise_mm.resize(3, 0);
@@ -570,12 +600,13 @@ void draw_errors_validated(const DigitalModel& model, const Measurement& m, Rand
 void draw_errors(const DigitalModel& model, const Measurement& m, RandomSource& rng,
                  const Stages& stages, ErrorDraw& out) {
   check_measurement(m, "draw_errors");
-  draw_errors_validated(model, m, rng, stages, out);
+  draw_errors_validated(model, m, rng, stages, out, NoiseComponents::xyz);
 }
 
 void draw_errors(const DigitalModel& model, const PreparedMeasurement& prepared,
-                 RandomSource& rng, const Stages& stages, ErrorDraw& out) {
-  draw_errors_validated(model, prepared.measurement(), rng, stages, out);
+                 RandomSource& rng, const Stages& stages, ErrorDraw& out,
+                 NoiseComponents noise) {
+  draw_errors_validated(model, prepared.measurement(), rng, stages, out, noise);
 }
 
 ErrorDraw draw_errors(const DigitalModel& model, const Measurement& m, RandomSource& rng,
@@ -596,7 +627,7 @@ void simulate(const Measurement& m, const DigitalModel& model, const ErrorDraw& 
   const bool probe = stages.is_enabled(ErrorSource::probe);
   const bool noise = stages.is_enabled(ErrorSource::noise);
   if (roughness) check_draw_size(draw.roughness_mm.size(), n, "roughness");
-  if (noise) check_draw_size(draw.noise_mm.cols(), n, "noise");
+  if (noise) check_noise(draw, n, false, "simulate");
   if (probe) check_probe(draw.probe, "simulate");
   copy_metadata(m, out);
   out.points_mm.resize(3, n);
@@ -710,6 +741,9 @@ void simulate_corrected(const Measurement& m, const DigitalModel& model, const E
                         std::vector<geometry::Point2>& out_xy) {
   constexpr const char* kCaller = "simulate_corrected";
   if (formula != Formula::first_order) {
+    // The exact formula evaluates the kinematic errors at the noisy reported positions: it
+    // needs the z noise too.
+    if (stages.is_enabled(ErrorSource::noise)) check_noise(draw, m.size(), false, kCaller);
     thread_local Measurement simulated, corrected;
     simulate(m, model, draw, stages, formula, simulated);
     correct(simulated, model, stages, formula, corrected);

@@ -330,6 +330,66 @@ TEST(PreparedMeasurement, DrawAndFusedTrialAreBitForBitTheMeasurementOverloads) 
   EXPECT_EQ(max_abs_difference(plain.points_mm, fast.points_mm), 0.0);
 }
 
+// NoiseComponents::xy: the same draw of every other source, 2N noise numbers (the first 2N
+// of the 3N stream, point i's x, y at 2i, 2i + 1), and the x, y form gives exactly what a
+// 3-row draw carrying those x, y (any z) gives — z is never read there. Forms that need z
+// refuse a 2-row draw with a message naming the function.
+TEST(PreparedMeasurement, AnXyNoiseDrawIsTheXyFormsInputBitForBit) {
+  const DigitalModel model = read_digital_model_file(kExample);
+  const Measurement best = best_estimate(model, 720, 64);
+  const PreparedMeasurement prepared(best, model);
+  SeededRandomSource rng_xyz(65), rng_xy(65);
+  ErrorDraw xyz, xy;
+  draw_errors(model, prepared, rng_xyz, Stages::all(), xyz);
+  draw_errors(model, prepared, rng_xy, Stages::all(), xy, NoiseComponents::xy);
+  EXPECT_EQ(xyz.noise_mm.rows(), 3);
+  ASSERT_EQ(xy.noise_mm.rows(), 2);
+  ASSERT_EQ(xy.noise_mm.cols(), best.size());
+  EXPECT_EQ(xy.temperature_c, xyz.temperature_c);
+  EXPECT_EQ(xy.kinematic.parameters(), xyz.kinematic.parameters());
+  EXPECT_EQ(xy.roughness_mm, xyz.roughness_mm);
+  // The first 2N numbers of the noise call, in the order drawn.
+  const Eigen::Map<const Eigen::VectorXd> stream_xy(xy.noise_mm.data(), 2 * best.size());
+  const Eigen::Map<const Eigen::VectorXd> stream_xyz(xyz.noise_mm.data(), 2 * best.size());
+  EXPECT_EQ(stream_xy, stream_xyz);
+
+  // A 3-row draw holding the same x, y and arbitrary z: the x, y form is bit for bit the same.
+  ErrorDraw padded = xy;
+  padded.noise_mm.resize(3, best.size());
+  padded.noise_mm.topRows<2>() = xy.noise_mm;
+  padded.noise_mm.row(2).setConstant(1.0);  // a 1 mm z noise: it must not matter
+  for (const Stages& stages : {Stages::all(), Stages::only(ErrorSource::noise)}) {
+    std::vector<vcmm::geometry::Point2> from_xy, from_padded, plain;
+    simulate_corrected(prepared, model, xy, stages, Formula::first_order, from_xy);
+    simulate_corrected(prepared, model, padded, stages, Formula::first_order, from_padded);
+    simulate_corrected(best, model, xy, stages, Formula::first_order, plain);
+    EXPECT_EQ(from_xy, from_padded);
+    EXPECT_EQ(from_xy, plain);
+  }
+
+  // Every form that needs z refuses it, naming the function.
+  const auto expect_refused = [](const auto& call, const std::string& name) {
+    try {
+      call();
+      ADD_FAILURE() << name << " accepted x, y noise";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(name + ": the draw's noise holds x, y only"),
+                std::string::npos)
+          << e.what();
+    }
+  };
+  Measurement out;
+  std::vector<vcmm::geometry::Point2> out_xy;
+  expect_refused([&] { simulate(best, model, xy, Stages::all(), Formula::first_order, out); },
+                 "simulate");
+  expect_refused([&] {
+    simulate_corrected(prepared, model, xy, Stages::all(), Formula::first_order, out);
+  }, "simulate_corrected");
+  expect_refused([&] {
+    simulate_corrected(prepared, model, xy, Stages::all(), Formula::exact, out_xy);
+  }, "simulate_corrected");
+}
+
 TEST(PreparedMeasurement, DrawsOfAHigherProbeOrderTakeTheMeasurementPath) {
   // Prepared for a model without directional probe terms (no harmonics stored), simulated
   // with the example model's draw (orders 2-4): the same result as the Measurement overload.

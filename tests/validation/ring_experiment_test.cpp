@@ -9,7 +9,12 @@
 #include <algorithm>
 #include <array>
 #include <numbers>
+#include <span>
+#include <vector>
+#include <string>
+#include <memory>
 
+#include "internal/stream_random_source.h"
 #include "vcmm/errormodel/ring_gauge.h"
 #include "vcmm/geometry/point.h"
 #include "support/perfect_model.h"
@@ -153,6 +158,117 @@ TEST(RingExperiment, SameSeedSameNumbersWhateverTheThreadCount) {
   o.monte_carlo.seed = 1235;
   const auto other = evaluate_ring_uncertainty(model, m, o);
   EXPECT_NE(one.monte_carlo.samples, other.monte_carlo.samples);
+}
+
+em::DigitalModel example_model() {
+  return em::read_digital_model_file(std::string(VCMM_SOURCE_DIR) + "/examples/cmm_model.json");
+}
+
+/// A scan of the seed study's ring with n points where the example model's axes reach it.
+em::Measurement example_scan(Eigen::Index n) {
+  em::RingGauge g;
+  g.form = em::seed_study_ring_form();
+  em::RingSampling sampling;
+  sampling.points = n;
+  sampling.mode = em::ProbingMode::scanning;
+  sampling.placement.location_mm = {600.0, 500.0, 250.0};
+  sampling.stylus_offset_mm = {0.0, 0.0, -100.0};
+  sampling.temperature_c = 20.3;
+  return em::ring_gauge_measurement(g, sampling);
+}
+
+/// The ring trial as it drew before the x, y noise rule: 3N noise numbers a trial (x, y, z per
+/// point; the z never read), everything else as RingTrial.
+uncertainty::ExperimentFactory xyz_noise_factory(const em::DigitalModel& model,
+                                                 const em::Measurement& best,
+                                                 const RingEvaluationOptions& options,
+                                                 const em::Stages& stages) {
+  auto prepared = std::make_shared<const em::PreparedMeasurement>(best, model);
+  return [&model, prepared, options, stages]() -> uncertainty::Experiment {
+    auto draw = std::make_shared<em::ErrorDraw>();
+    auto profile = std::make_shared<std::vector<geometry::Point2>>();
+    return [&model, prepared, options, stages, draw, profile](uncertainty::RandomStream& rng,
+                                                              std::span<double> out) {
+      internal::StreamRandomSource source(rng);
+      em::draw_errors(model, *prepared, source, stages, *draw, em::NoiseComponents::xyz);
+      em::simulate_corrected(*prepared, model, *draw, stages, em::Formula::first_order,
+                             *profile);
+      const RingMeasurands y = evaluate_ring(*profile, options);
+      out[diameter] = y.diameter_mm;
+      out[roundness] = y.roundness_mm;
+    };
+  };
+}
+
+// The trial draws the noise as x, y only (errormodel::NoiseComponents::xy), 2N numbers
+// instead of 3N: other samples, the same distribution. Against the old rule over independent
+// seeds (the example model, 720 points, a 50 UPR filter, MZ, all stages and the noise alone):
+// the means agree within 4.5 standard errors √(u_a²/M + u_b²/M), the u's within 4.5 standard
+// errors of their difference, u·√(2 · 1/(2(M − 1))). The noise-only case would see a
+// wrong σ (e.g. √(2/3) of it: u of RONt ~18 % lower, ~10 standard errors at M = 3000).
+TEST(RingExperiment, XyNoiseDrawsGiveTheDistributionOfTheXyzDraws) {
+  const em::DigitalModel model = example_model();
+  const em::Measurement best = example_scan(720);
+  RingEvaluationOptions options;  // 50 UPR, MZ
+  constexpr std::uint64_t kTrials = 3000;
+  for (const em::Stages& stages : {em::Stages::all(), em::Stages::only(em::ErrorSource::noise)}) {
+    for (const std::uint64_t seed : {11u, 12u, 13u}) {
+      uncertainty::MonteCarloOptions mc;
+      mc.trials = kTrials;
+      mc.threads = 2;
+      mc.seed = seed;
+      const auto xy = uncertainty::run_monte_carlo(
+          ring_experiment_factory(model, best, options, stages), ring_measurand_count, mc);
+      mc.seed = seed + 1000;  // independent samples of the old rule
+      const auto xyz = uncertainty::run_monte_carlo(
+          xyz_noise_factory(model, best, options, stages), ring_measurand_count, mc);
+      for (const std::size_t q : {std::size_t{diameter}, std::size_t{roundness}}) {
+        const auto& a = xy.summaries[q];
+        const auto& b = xyz.summaries[q];
+        SCOPED_TRACE("seed " + std::to_string(seed) + ", measurand " + std::to_string(q) +
+                     (stages.is_enabled(em::ErrorSource::kinematic) ? ", all" : ", noise"));
+        const double m = static_cast<double>(kTrials);
+        const double se_mean = std::sqrt((a.standard_uncertainty * a.standard_uncertainty +
+                                          b.standard_uncertainty * b.standard_uncertainty) /
+                                         m);
+        EXPECT_NEAR(a.mean, b.mean, 4.5 * se_mean);
+        const double se_u = b.standard_uncertainty / std::sqrt(m - 1.0);
+        EXPECT_NEAR(a.standard_uncertainty, b.standard_uncertainty, 4.5 * se_u);
+      }
+    }
+  }
+}
+
+// The trial's MZ and MI RONt (from the filtered profile's extremes, *_from_extremes.h) are
+// bit for bit those of the fits of all filtered points (evaluate_ring_profile's full fit), on
+// 40 simulated trial profiles of the example model at 3 600 points each.
+TEST(RingExperiment, MinimumZoneAndInscribedRontAreTheFullFitsBitForBit) {
+  const em::DigitalModel model = example_model();
+  const em::Measurement best = example_scan(3600);
+  const em::PreparedMeasurement prepared(best, model);
+  for (const ReferenceCircle reference :
+       {ReferenceCircle::minimum_zone, ReferenceCircle::maximum_inscribed}) {
+    RingEvaluationOptions options;  // 50 UPR
+    options.reference = reference;
+    auto trial = ring_experiment_factory(model, best, options, em::Stages::all())();
+    for (std::uint64_t t = 0; t < 40; ++t) {
+      uncertainty::RandomStream rng(77, t);
+      internal::StreamRandomSource source(rng);
+      em::ErrorDraw draw;
+      em::draw_errors(model, prepared, source, em::Stages::all(), draw, em::NoiseComponents::xy);
+      std::vector<geometry::Point2> profile;
+      em::simulate_corrected(prepared, model, draw, em::Stages::all(), em::Formula::first_order,
+                             profile);
+      EXPECT_EQ(evaluate_ring(profile, options).roundness_mm,
+                evaluate_ring_profile(profile, options).measurands.roundness_mm)
+          << "trial " << t;
+      // And the trial itself computes exactly this.
+      uncertainty::RandomStream same(77, t);
+      std::array<double, ring_measurand_count> y{};
+      trial(same, y);
+      EXPECT_EQ(y[roundness], evaluate_ring(profile, options).roundness_mm) << "trial " << t;
+    }
+  }
 }
 
 // Noise on a perfect circle: every trial's RONt is positive, so the estimate from the data

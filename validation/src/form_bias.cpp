@@ -38,7 +38,7 @@ class PilotTrial {
 
   void operator()(uncertainty::RandomStream& rng, std::span<double> out) {
     StreamRandomSource source(rng);
-    em::draw_errors(*model_, *best_, source, stages_, draw_);
+    em::draw_errors(*model_, *best_, source, stages_, draw_, em::NoiseComponents::xy);
     em::simulate_corrected(*best_, *model_, draw_, stages_, em::Formula::first_order, profile_);
     const geometry::LeastSquaresCircle ls = geometry::least_squares_circle(profile_);
     harmonics_.analyse(profile_, ls.center, ls.radius, reference_->max_order());
@@ -76,7 +76,7 @@ class SurrogateTrial {
 
   void operator()(uncertainty::RandomStream& rng, std::span<double> out) {
     StreamRandomSource source(rng);
-    em::draw_errors(*model_, *surrogate_, source, stages_, draw_);
+    em::draw_errors(*model_, *surrogate_, source, stages_, draw_, em::NoiseComponents::xy);
     em::simulate_corrected(*surrogate_, *model_, draw_, stages_, em::Formula::first_order,
                            profile_);
     const geometry::LeastSquaresCircle ls = geometry::least_squares_circle(profile_);

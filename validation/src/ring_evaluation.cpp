@@ -7,8 +7,10 @@
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/maximum_inscribed.h"
+#include "vcmm/geometry/maximum_inscribed_from_extremes.h"
 #include "vcmm/geometry/minimum_circumscribed.h"
 #include "vcmm/geometry/minimum_zone.h"
+#include "vcmm/geometry/minimum_zone_from_extremes.h"
 
 namespace vcmm::validation {
 namespace {
@@ -73,6 +75,19 @@ RingMeasurands evaluate_ring(std::span<const geometry::Point2> profile,
       geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered,
                                           &filtered_ls);
       out.roundness_mm = filtered_ls.ron.ront;
+    } else if (options.reference == ReferenceCircle::minimum_zone ||
+               options.reference == ReferenceCircle::maximum_inscribed) {
+      // MZ and MI from a subset of the filtered profile's extremes about the filter centre,
+      // proven to decide the circle of all points: RONt bit for bit minimum_zone_circle's and
+      // maximum_inscribed_circle's (*_from_extremes.h), at a fraction of the full fit's cost.
+      thread_local geometry::ExtremesScratch extremes;
+      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered);
+      out.roundness_mm =
+          options.reference == ReferenceCircle::minimum_zone
+              ? geometry::minimum_zone_ront_from_extremes(filtered.points,
+                                                          filtered.filter_center, extremes)
+              : geometry::maximum_inscribed_ront_from_extremes(filtered.points,
+                                                               filtered.filter_center, extremes);
     } else {
       geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered);
       out.roundness_mm = fit_reference(filtered.points, options.reference).ront;

@@ -50,7 +50,8 @@ RingTrial::RingTrial(const errormodel::DigitalModel& model,
 
 void RingTrial::operator()(uncertainty::RandomStream& rng, std::span<double> measurands) {
   StreamRandomSource source(rng);
-  errormodel::draw_errors(*model_, *prepared_, source, drawn_, draw_);
+  errormodel::draw_errors(*model_, *prepared_, source, drawn_, draw_,
+                         errormodel::NoiseComponents::xy);
   errormodel::simulate_corrected(*prepared_, *model_, draw_, applied_,
                                  errormodel::Formula::first_order, profile_);
   const RingMeasurands y = evaluate_ring(profile_, options_);

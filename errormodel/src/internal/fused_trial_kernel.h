@@ -17,7 +17,8 @@
 namespace vcmm::errormodel::internal {
 
 /// What the kernel reads: structure-of-arrays points p and normals n (workpiece axes, mm),
-/// per-point roughness r_i, probe shift and 3 × N noise (zeros for a stage that is off), the
+/// per-point roughness r_i, probe shift and noise — 3 × N (x, y, z) for the xyz form, 2 × N
+/// (x, y) for the xy form — (zeros for a stage that is off), the
 /// drawn and the inverse estimated expansion factors, the placement rotation R (about z) and
 /// location L.
 struct FusedTrialInput {

@@ -87,9 +87,54 @@ VCMM_SIMD_CLONES void distances_of(const double* d, const double* cs, const doub
   }
 }
 
+/// D̃ of points [0, n) about c into out, and per block of kRangeBlock points their highest
+/// and lowest (max and min are exact in any order; a non-finite coordinate gives a NaN that
+/// they may not show). Eight points a step as GCC vectors (the compiler does not vectorise
+/// the interleaved x, y nor the max/min of a plain loop); the tail with the same operations.
+VCMM_SIMD_CLONES void squared_distances_of(const Point2* p, std::size_t n, Point2 c,
+                                           double* __restrict out, double* __restrict block_hi,
+                                           double* __restrict block_lo) {
+  const double* xy = reinterpret_cast<const double*>(p);
+  const V8 cx = V8{} + c.x, cy = V8{} + c.y;
+  const std::size_t full = n / kRangeBlock;
+  for (std::size_t b = 0; b < full; ++b) {
+    const std::size_t j = b * kRangeBlock;
+    V8 v[2];
+    for (std::size_t h = 0; h < 2; ++h) {
+      const V8 a0 = load8(xy + 2 * j + 16 * h), a1 = load8(xy + 2 * j + 16 * h + 8);
+      const V8 x = __builtin_shuffle(a0, a1, M8{0, 2, 4, 6, 8, 10, 12, 14}) - cx;
+      const V8 y = __builtin_shuffle(a0, a1, M8{1, 3, 5, 7, 9, 11, 13, 15}) - cy;
+      v[h] = x * x + y * y;
+      std::memcpy(out + j + 8 * h, &v[h], sizeof v[h]);
+    }
+    block_hi[b] = hmax(vmax(v[0], v[1]));
+    block_lo[b] = hmin(vmin(v[0], v[1]));
+  }
+  if (full * kRangeBlock == n) return;
+  double hi = -kInf, lo = kInf;
+  for (std::size_t j = full * kRangeBlock; j < n; ++j) {
+    const double dx = p[j].x - c.x, dy = p[j].y - c.y;
+    const double v = dx * dx + dy * dy;
+    out[j] = v;
+    hi = std::max(hi, v);
+    lo = std::min(lo, v);
+  }
+  block_hi[full] = hi;
+  block_lo[full] = lo;
+}
+
 constexpr double kU = 0x1.0p-53;
 
 }  // namespace
+
+void squared_distances(std::span<const Point2> points, Point2 c, double* out,
+                       ExtremesScratch& s) {
+  const std::size_t blocks = (points.size() + kRangeBlock - 1) / kRangeBlock;
+  s.peak_hi.resize(blocks);
+  s.valley_lo.resize(blocks);
+  squared_distances_of(points.data(), points.size(), c, out, s.peak_hi.data(),
+                       s.valley_lo.data());
+}
 
 ValueRange deviation_ranges(const PolarProfile& p, ExtremesScratch& s, const char* caller) {
   const std::size_t n = p.size();
@@ -97,6 +142,25 @@ ValueRange deviation_ranges(const PolarProfile& p, ExtremesScratch& s, const cha
     throw InvalidInput(std::string(caller) + ": expected one direction per deviation; got " +
                        std::to_string(n) + " deviations and " +
                        std::to_string(p.directions ? p.directions->size() : 0) + " directions");
+  const double sum = local_extremes(p.deviation, s);
+  if (!std::isfinite(sum) || !std::isfinite(p.base_radius)) {
+    const double* d = p.deviation.data();
+    std::size_t j = 0;
+    while (j < n && std::isfinite(d[j])) ++j;
+    throw InvalidInput(std::string(caller) + ": " +
+                       (j < n ? "deviation " + std::to_string(j) + " is not finite"
+                              : std::string("the base radius is not finite")));
+  }
+  ValueRange r{s.valley_lo[0], s.peak_hi[0]};
+  for (std::size_t b = 1; b < s.peak_hi.size(); ++b) {
+    r.hi = std::max(r.hi, s.peak_hi[b]);
+    r.lo = std::min(r.lo, s.valley_lo[b]);
+  }
+  return r;
+}
+
+double local_extremes(std::span<const double> values, ExtremesScratch& s) {
+  const std::size_t n = values.size();
   const std::size_t blocks = (n + kRangeBlock - 1) / kRangeBlock;
   // Blocks 1 … last − 1 are full and have both outer neighbours inside the array: the
   // vectorised pass; the first and the last ones here (cyclic neighbours). n ≥ 8.
@@ -104,7 +168,7 @@ ValueRange deviation_ranges(const PolarProfile& p, ExtremesScratch& s, const cha
   const std::size_t last = n % kRangeBlock == 0 ? full - 1 : full;
   s.peak_hi.resize(blocks);
   s.valley_lo.resize(blocks);
-  const double* d = p.deviation.data();
+  const double* d = values.data();
   double sum =
       last > 1 ? deviation_blocks(d, 1, last, s.peak_hi.data(), s.valley_lo.data()) : 0.0;
   const auto scalar_block = [&](std::size_t b) {
@@ -120,25 +184,18 @@ ValueRange deviation_ranges(const PolarProfile& p, ExtremesScratch& s, const cha
   };
   scalar_block(0);
   for (std::size_t b = std::max<std::size_t>(last, 1); b < blocks; ++b) scalar_block(b);
-  if (!std::isfinite(sum) || !std::isfinite(p.base_radius)) {
-    std::size_t j = 0;
-    while (j < n && std::isfinite(d[j])) ++j;
-    throw InvalidInput(std::string(caller) + ": " +
-                       (j < n ? "deviation " + std::to_string(j) + " is not finite"
-                              : std::string("the base radius is not finite")));
-  }
-  ValueRange r{s.valley_lo[0], s.peak_hi[0]};
-  for (std::size_t b = 1; b < blocks; ++b) {
-    r.hi = std::max(r.hi, s.peak_hi[b]);
-    r.lo = std::min(r.lo, s.valley_lo[b]);
-  }
-  return r;
+  return sum;
 }
 
 void add_deviation_extremes(const PolarProfile& p, ExtremesScratch& s, double top, double bottom,
                             std::size_t neighbours) {
-  const std::size_t n = p.size();
-  const double* d = p.deviation.data();
+  add_value_extremes(p.deviation, s, top, bottom, neighbours);
+}
+
+void add_value_extremes(std::span<const double> values, ExtremesScratch& s, double top,
+                        double bottom, std::size_t neighbours) {
+  const std::size_t n = values.size();
+  const double* d = values.data();
   // The block's highest peak and lowest valley (the first point holding that value; a
   // second qualifying extremum in the same 16 points is left to the check's rounds).
   const auto first_equal = [&](std::size_t b, double v) {
@@ -210,6 +267,34 @@ std::size_t add_with_neighbours(std::size_t j, std::size_t neighbours, std::size
     k = k + 1 == n ? 0 : k + 1;
   }
   return added;
+}
+
+std::optional<ValueRange> origin_distance_extremes(std::span<const Point2> points, Point2 origin,
+                                                   ExtremesScratch& s, const char* caller) {
+  const std::size_t n = points.size();
+  if (n < 8)
+    throw InvalidInput(std::string(caller) + ": needs at least 8 points; got " +
+                       std::to_string(n));
+  s.distance2.resize(n);
+  squared_distances(points, origin, s.distance2.data(), s);
+  // The sum of the D_o is finite exactly when every one is.
+  const bool finite = std::isfinite(local_extremes(s.distance2, s));
+  clear_subset(n, s);
+  if (!finite) {
+    validate_profile(points, 8, caller);  // names a non-finite point
+    return std::nullopt;
+  }
+  ValueRange r{s.valley_lo[0], s.peak_hi[0]};  // the global extremes are local ones
+  for (std::size_t b = 1; b < s.peak_hi.size(); ++b) {
+    r.hi = std::max(r.hi, s.peak_hi[b]);
+    r.lo = std::min(r.lo, s.valley_lo[b]);
+  }
+  return r;
+}
+
+void collect_subset(std::span<const Point2> points, ExtremesScratch& s) {
+  s.subset.resize(s.subset_index.size());
+  for (std::size_t i = 0; i < s.subset_index.size(); ++i) s.subset[i] = points[s.subset_index[i]];
 }
 
 void collect_subset(const PolarProfile& p, ExtremesScratch& s) {

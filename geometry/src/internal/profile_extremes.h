@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <limits>
+#include <optional>
+#include <span>
 
 #include "vcmm/geometry/polar_profile.h"
 
@@ -36,6 +38,11 @@ struct ValueRange {
 /// their count differs from the deviations', or a deviation or the base radius is not finite.
 ValueRange deviation_ranges(const PolarProfile& p, ExtremesScratch& s, const char* caller);
 
+/// deviation_ranges' pass over any cyclic sequence (n ≥ 8): per block the highest local maximum
+/// and the lowest local minimum into s.peak_hi, s.valley_lo; returns the sum of the values
+/// (not finite when one of them is not).
+double local_extremes(std::span<const double> values, ExtremesScratch& s);
+
 /// The range of the deviations of block b: its extremum is a peak (valley) of the block or
 /// one of the block's two end points.
 inline ValueRange block_range(const PolarProfile& p, const ExtremesScratch& s, std::size_t b) {
@@ -51,6 +58,16 @@ inline ValueRange block_range(const PolarProfile& p, const ExtremesScratch& s, s
 /// band-limited profile; the *_from_extremes checks add what this misses.
 void add_deviation_extremes(const PolarProfile& p, ExtremesScratch& s, double top, double bottom,
                             std::size_t neighbours);
+
+/// add_deviation_extremes for any sequence whose local extremes local_extremes has found.
+void add_value_extremes(std::span<const double> values, ExtremesScratch& s, double top,
+                        double bottom, std::size_t neighbours);
+
+/// D̃_j = fl(fl(x_j − c.x)² + fl(y_j − c.y)²) of every point into out[0 … n), vectorised,
+/// and per block of kRangeBlock points their highest and lowest into s.peak_hi, s.valley_lo
+/// (a non-finite coordinate gives a NaN in out that these may miss).
+void squared_distances(std::span<const Point2> points, Point2 c, double* out,
+                       ExtremesScratch& s);
 
 /// The index of the highest deviation (the first one holding it; deviation_ranges must have
 /// run).
@@ -112,6 +129,18 @@ ValueRange distances_beyond(const PolarProfile& p, const ExtremesScratch& s, Poi
   }
   return r;
 }
+
+/// The first pass of the points overloads of the *_from_extremes functions: at least 8
+/// points (else InvalidInput naming `caller`), D_o = D̃ about `origin` into s.distance2 and its
+/// local extremes per block (s.peak_hi, s.valley_lo), S := ∅. Returns the range of D_o, or
+/// nullopt when some D_o is not finite though every coordinate is (squares beyond the double
+/// range: the caller fits all points); a non-finite coordinate throws InvalidInput naming
+/// `caller` and the point.
+std::optional<ValueRange> origin_distance_extremes(std::span<const Point2> points, Point2 origin,
+                                                   ExtremesScratch& s, const char* caller);
+
+/// s.subset := the points of S (in the order they joined), for a profile given as points.
+void collect_subset(std::span<const Point2> points, ExtremesScratch& s);
 
 /// S := ∅ for a profile of n points.
 void clear_subset(std::size_t n, ExtremesScratch& s);

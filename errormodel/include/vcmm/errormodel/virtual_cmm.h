@@ -91,7 +91,19 @@ struct ErrorDraw {
   KinematicErrors kinematic;                       ///< true kinematic errors
   ProbeErrors probe;                               ///< true probe errors
   Eigen::VectorXd roughness_mm;  ///< N deviations along the normals (empty: stage off)
-  Eigen::Matrix3Xd noise_mm;     ///< 3×N noise vectors, workpiece axes (empty: stage off)
+  /// Noise vectors, workpiece axes: 3×N (x, y, z), or 2×N (x, y) when drawn with
+  /// NoiseComponents::xy for the x, y form of simulate_corrected (empty: stage off).
+  Eigen::MatrixXd noise_mm;
+};
+
+/// Which components of the noise a draw holds. The x, y form of the fused trial
+/// (simulate_corrected into Point2) never reads z: its first-order kinematic term is evaluated
+/// at the noise-free machine position, so z noise moves only the z coordinate. A Monte Carlo
+/// loop that evaluates x, y only draws the 2N numbers it uses instead of 3N (xy); everything
+/// else needs all three (xyz).
+enum class NoiseComponents {
+  xyz,  ///< 3N normals, point i's (x, y, z) consecutive: every form
+  xy,   ///< 2N normals, point i's (x, y) consecutive: the x, y form, first-order formula only
 };
 
 /// The estimated (nominal) values of every source for measurement `m`: T = the reading,
@@ -103,7 +115,8 @@ ErrorDraw nominal_errors(const DigitalModel& model, const Measurement& m);
 /// model.kinematics.draw(), probe coefficients ~ N(value, u²), roughness N(0, σ²) per point,
 /// noise N(0, σ_mode² I₃) per point. Sources whose stage is off keep their nominal value and
 /// consume no random numbers. Random numbers come in bulk calls, in stage order: temperature
-/// and probe scalars (one call), kinematic (its own call), roughness (N), noise (3N).
+/// and probe scalars (one call), kinematic (its own call), roughness (N), noise (3N, point i's
+/// x, y, z consecutive).
 /// `out` is reused: no allocation once sized. Validates `m` (InvalidInput). O(N).
 void draw_errors(const DigitalModel& model, const Measurement& m, RandomSource& rng,
                  const Stages& stages, ErrorDraw& out);
@@ -166,9 +179,14 @@ class PreparedMeasurement {
 };
 
 /// draw_errors for a prepared measurement: the same draw as draw_errors(model,
-/// prepared.measurement(), rng, stages, out), without validating the points again. O(N).
+/// prepared.measurement(), rng, stages, out), without validating the points again. With
+/// `noise` = NoiseComponents::xy the noise stage draws 2N numbers, (x, y) per point, into a
+/// 2×N noise_mm (every other source as above): a draw only the x, y form of
+/// simulate_corrected with the first-order formula accepts (the others throw InvalidInput).
+/// O(N).
 void draw_errors(const DigitalModel& model, const PreparedMeasurement& prepared,
-                 RandomSource& rng, const Stages& stages, ErrorDraw& out);
+                 RandomSource& rng, const Stages& stages, ErrorDraw& out,
+                 NoiseComponents noise = NoiseComponents::xyz);
 
 /// One Monte Carlo trial's corrected data, correct(simulate(m, draw)), computed in one pass
 /// over the points (plus the kinematic kernel's, on per-thread work arrays: no 3×N result in
@@ -198,7 +216,9 @@ void simulate_corrected(const Measurement& m, const DigitalModel& model, const E
                         const Stages& stages, Formula formula, Measurement& out);
 /// As above, only the x and y coordinates of the corrected points (workpiece axes, mm), for
 /// the 2-D evaluation of a section (e.g. a ring gauge's roundness and diameter): no metadata
-/// is copied. `out_xy` is resized to N (storage reused).
+/// is copied. `out_xy` is resized to N (storage reused). With the first-order formula the
+/// draw's noise may be 2×N (NoiseComponents::xy) or 3×N (its z is not read); the exact
+/// formula needs 3×N (InvalidInput otherwise).
 void simulate_corrected(const Measurement& m, const DigitalModel& model, const ErrorDraw& draw,
                         const Stages& stages, Formula formula,
                         std::vector<geometry::Point2>& out_xy);

@@ -4,6 +4,9 @@
 // minimum_zone_from_extremes.h.
 #pragma once
 
+#include <span>
+
+#include "vcmm/geometry/point.h"
 #include "vcmm/geometry/polar_profile.h"
 
 namespace vcmm::geometry {
@@ -40,5 +43,25 @@ namespace vcmm::geometry {
 /// distances only in the blocks that can matter, and the MI of |S| points (~140 of 3 600 on
 /// the filtered example ring).
 double maximum_inscribed_ront_from_extremes(const PolarProfile& p, ExtremesScratch& s);
+
+/// The same for a profile given as points (a filtered profile about its filter centre,
+/// gaussian_filter.h's FilteredProfile): RONt equal bit for bit to
+/// maximum_inscribed_circle(points).ron.ront, s.center its centre.
+///
+/// The argument above with the polar quantities taken about `origin`: S (the lowest local
+/// minima of the squared distances D_o from `origin` per block of 16 within 45 % of their
+/// range of the bottom, with a neighbour either side, and every (n/32)th point, at most every
+/// 64th) is fitted; its points' directions about `origin`, computed and normalised, must go
+/// once around it in index order with gaps below π/2, and the hull bound uses their
+/// distances from it and ρ_max = √max D_o; every point's D̃ about the centre is computed (no
+/// deviation bounds), those that may be inside C_S go to the exact predicate, and the
+/// farthest is the first holding the largest D̃. Else (or after 6 fits) all points are
+/// fitted. `origin` and the order only steer the speed, except that a profile not in angular
+/// order about `origin` always takes the full fit.
+/// Preconditions: ≥ 8 finite points (InvalidInput naming the function); throws as
+/// maximum_inscribed_circle. Complexity: two vectorised O(n) passes a round and the MI of |S|
+/// points.
+double maximum_inscribed_ront_from_extremes(std::span<const Point2> points, Point2 origin,
+                                            ExtremesScratch& s);
 
 }  // namespace vcmm::geometry

@@ -4,6 +4,9 @@
 // profile's zone is decided by a few dozen points near its peaks and valleys.
 #pragma once
 
+#include <span>
+
+#include "vcmm/geometry/point.h"
 #include "vcmm/geometry/polar_profile.h"
 
 namespace vcmm::geometry {
@@ -40,5 +43,26 @@ namespace vcmm::geometry {
 /// the minimum zone of |S| points (~170 of 3 600 on the filtered example ring; 1.02 fits a
 /// call there).
 double minimum_zone_ront_from_extremes(const PolarProfile& p, ExtremesScratch& s);
+
+/// The same for a profile given as points (a filtered profile about its filter centre, e.g.
+/// gaussian_filter.h's FilteredProfile, whose points lie on rays from it): RONt equal bit for
+/// bit to minimum_zone_circle(points).ron.ront, and s.center to its centre.
+///
+/// The argument is the one above, which needs nothing polar: S's minimum zone (exact,
+/// certified) whose annulus is proven to hold every other point is the minimum zone of all;
+/// and the fitter's RONt, (R̃² − r̃²)/(R̃ + r̃) from the zone's exact squared radii, is a
+/// function of that zone alone. Here S starts as, per block of 16 consecutive points, the
+/// highest local maximum and the lowest local minimum of the squared distances D_o from
+/// `origin` (cyclic) if within 45 % of their range of the top (resp. bottom), each with one
+/// neighbour either side; the containment pass computes D̃ about the fitted centre for every point (no
+/// deviation bounds to skip blocks with). `origin` (finite; e.g. the filter centre) and the
+/// order of the points (consecutive points near each other, e.g. angular order) only steer
+/// the speed: any order and any origin give the same, exact result.
+/// Preconditions: ≥ 8 finite points (InvalidInput naming this function and the rule or the
+/// point); otherwise throws as minimum_zone_circle(points) (e.g. collinear points, in its
+/// name). Complexity: two vectorised O(n) passes and the
+/// minimum zone of |S| points (~1 fit a call on a filtered 3 600-point ring).
+double minimum_zone_ront_from_extremes(std::span<const Point2> points, Point2 origin,
+                                       ExtremesScratch& s);
 
 }  // namespace vcmm::geometry

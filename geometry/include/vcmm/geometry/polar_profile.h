@@ -57,6 +57,7 @@ struct ExtremesScratch {
   std::vector<Point2> subset;              ///< its points
   std::vector<unsigned char> member;       ///< per point: in S
   std::vector<double> peak_hi, valley_lo;  ///< per block of 16: highest peak, lowest valley
+  std::vector<double> distance2;           ///< per point: D about the origin (points overload)
   int rounds = 0;                          ///< fits on subsets in the last call
   bool fell_back = false;                  ///< the last call fitted all points
   Point2 center;                           ///< the last call's reference centre

@@ -63,7 +63,8 @@ class RingTrial {
             std::shared_ptr<const errormodel::PreparedMeasurement> prepared,
             const RingEvaluationOptions& options, const errormodel::Stages& drawn,
             const errormodel::Stages& applied);
-  /// Draws all error sources from `rng`, computes correct(simulate(x̂, e)) in one fused pass
+  /// Draws all error sources from `rng` (the noise as x, y only, errormodel::NoiseComponents::xy:
+  /// the 2-D evaluation reads no z), computes correct(simulate(x̂, e)) in one fused pass
   /// (errormodel::simulate_corrected, first-order kinematics), evaluates; writes
   /// measurands[diameter] (mm) and measurands[roundness] (mm).
   void operator()(uncertainty::RandomStream& rng, std::span<double> measurands);

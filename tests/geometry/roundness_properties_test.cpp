@@ -17,11 +17,13 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "support/filtered_least_squares.h"
 #include "support/test_profiles.h"
 #include "vcmm/geometry/certificate.h"
 #include "vcmm/geometry/gaussian_filter.h"
@@ -244,6 +246,14 @@ TEST_P(RoundnessProperties, EvaluateRoundnessWithAndWithoutFilter) {
   EXPECT_TRUE(vi.valid) << vi.reason;
   const auto vc = verify(fp, *filtered.minimum_circumscribed);
   EXPECT_TRUE(vc.valid) << vc.reason;
+  // LS of the filtered profile: the filter's one-step circle on its rays (or the full fit
+  // where that step is not exact) — the full fit of the filtered points to a few ulps of the
+  // coordinates, with the same structure (2 contacts, all four parameters).
+  double scale = 0.0;
+  for (const Point2& q : fp) scale = std::max({scale, std::fabs(q.x), std::fabs(q.y)});
+  vcmm::test::expect_same_least_squares(*filtered.least_squares, fp,
+                                        16.0 * std::numeric_limits<double>::epsilon() * scale);
+  EXPECT_GE(filtered.least_squares->iterations, 1);
   EXPECT_LE(filtered.minimum_zone->ron.ront, filtered.least_squares->ron.ront + 1e-12);
   // The filter is a positive-weight smoothing of the deviations about the LS centre: their
   // peak-to-valley can only shrink, and the MZ zone is at most that.

@@ -36,6 +36,8 @@
 // factor 2 margin). Non-finite values (overflow) go to the exact predicate.
 #include "internal/extremal_circle.h"
 
+#include "internal/isa.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -444,5 +446,122 @@ double exact_power_gap(const ExactCircle& circle, Point2 p) {
   return ratio_to_double(num, mpz_class(circle.den * circle.den),
                          2L * e + 2L * circle.scale_exponent);
 }
+
+// ---- scan_distances --------------------------------------------------------------------
+// Eight points a step in GCC vector types of four doubles (one AVX2 register, or two SSE2
+// ones in the baseline variant), as two groups of four with their own per-lane extremes
+// (two independent min/max chains: one chain of compare-and-select bounds the loop to its
+// ~6-cycle latency per group). Per group, two loads of interleaved (x, y) pairs are unpacked
+// into x and y of points (0, 2, 1, 3) of the group — the lane order of the unpack
+// instructions, kept throughout (the lane indices say which point a lane holds). D̃ per lane
+// is the scalar expression (no FMA: -ffp-contract=off); each lane keeps its extreme by
+// min/max and the index of its first occurrence by a strict comparison; the eight lanes are
+// merged with ties to the lowest index, then the < 8 remaining points scalar: the plain
+// loop's result. Flags: one mask test per step, the rare set bits pushed in point order.
+
+namespace {
+
+using V4 = double __attribute__((vector_size(32)));
+using M4 = std::int64_t __attribute__((vector_size(32)));
+
+/// Whether any lane of a comparison mask is set: the lanes OR-ed by two shuffles, one
+/// extraction (three extractions cost more in the loop).
+[[gnu::always_inline]] inline bool any_lane(M4 m) {
+  const M4 h = m | __builtin_shuffle(m, M4{2, 3, 0, 1});
+  return (h | __builtin_shuffle(h, M4{1, 0, 3, 2}))[0] != 0;
+}
+
+struct Group {
+  V4 best;
+  M4 arg;
+};
+
+template <bool kMin>
+[[gnu::always_inline]] inline DistanceScan scan_body(const Point2* p, std::size_t n, Point2 c,
+                                                      double scale, double threshold,
+                                                      std::vector<std::size_t>& flagged) {
+  static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
+  const double* xy = reinterpret_cast<const double*>(p);
+  const double start = kMin ? std::numeric_limits<double>::infinity() : -1.0;
+  const V4 cx = {c.x, c.x, c.x, c.x}, cy = {c.y, c.y, c.y, c.y};
+  const V4 s = {scale, scale, scale, scale};
+  const V4 t = {threshold, threshold, threshold, threshold};
+  const M4 eight = {8, 8, 8, 8};
+  Group g[2] = {{{start, start, start, start}, {0, 2, 1, 3}},
+                {{start, start, start, start}, {4, 6, 5, 7}}};
+  M4 at[2] = {{0, 2, 1, 3}, {4, 6, 5, 7}};  // the point of each lane
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    M4 flag[2];
+    for (int h = 0; h < 2; ++h) {
+      V4 a, b;
+      __builtin_memcpy(&a, xy + 2 * i + 8 * h, sizeof a);      // x0 y0 x1 y1
+      __builtin_memcpy(&b, xy + 2 * i + 8 * h + 4, sizeof b);  // x2 y2 x3 y3
+      const V4 x = __builtin_shuffle(a, b, M4{0, 4, 2, 6});   // x0 x2 x1 x3
+      const V4 y = __builtin_shuffle(a, b, M4{1, 5, 3, 7});   // y0 y2 y1 y3
+      const V4 dx = (x - cx) * s, dy = (y - cy) * s;
+      const V4 d2 = dx * dx + dy * dy;
+      const M4 better = kMin ? d2 < g[h].best : d2 > g[h].best;
+      g[h].best = better ? d2 : g[h].best;
+      g[h].arg = better ? at[h] : g[h].arg;
+      flag[h] = kMin ? d2 >= t : d2 <= t;
+    }
+    if (any_lane(flag[0] | flag[1])) [[unlikely]] {
+      for (int h = 0; h < 2; ++h)
+        for (int k : {0, 2, 1, 3})  // lanes in point order
+          if (flag[h][k] != 0) flagged.push_back(static_cast<std::size_t>(at[h][k]));
+    }
+    at[0] += eight;
+    at[1] += eight;
+  }
+  DistanceScan out{start, 0};
+  for (int h = 0; h < 2 && i > 0; ++h)
+    for (int k = 0; k < 4; ++k) {
+      const auto index = static_cast<std::size_t>(g[h].arg[k]);
+      const double v = g[h].best[k];
+      if ((kMin ? v < out.d2 : v > out.d2) || (v == out.d2 && index < out.index))
+        out = {v, index};
+    }
+  for (; i < n; ++i) {
+    const double dx = (p[i].x - c.x) * scale, dy = (p[i].y - c.y) * scale;
+    const double d2 = dx * dx + dy * dy;
+    if (kMin ? d2 < out.d2 : d2 > out.d2) out = {d2, i};
+    if (kMin ? d2 >= threshold : d2 <= threshold) flagged.push_back(i);
+  }
+  return out;
+}
+
+template <bool kMin>
+DistanceScan scan_baseline(const Point2* p, std::size_t n, Point2 c, double scale,
+                           double threshold, std::vector<std::size_t>& flagged) {
+  return scan_body<kMin>(p, n, c, scale, threshold, flagged);
+}
+#if VCMM_GEOMETRY_X86
+template <bool kMin>
+__attribute__((target("avx2"))) DistanceScan scan_avx2(const Point2* p, std::size_t n,
+                                                       Point2 c, double scale,
+                                                       double threshold,
+                                                       std::vector<std::size_t>& flagged) {
+  return scan_body<kMin>(p, n, c, scale, threshold, flagged);
+}
+#endif
+
+}  // namespace
+
+template <Track kTrack>
+DistanceScan scan_distances(std::span<const Point2> points, Point2 c, double scale,
+                            double threshold, std::vector<std::size_t>& flagged) {
+  constexpr bool kMin = kTrack == Track::kNearest;
+#if VCMM_GEOMETRY_X86
+  if (use_avx2())
+    return scan_avx2<kMin>(points.data(), points.size(), c, scale, threshold, flagged);
+#endif
+  return scan_baseline<kMin>(points.data(), points.size(), c, scale, threshold, flagged);
+}
+
+template DistanceScan scan_distances<Track::kNearest>(std::span<const Point2>, Point2, double,
+                                                      double, std::vector<std::size_t>&);
+template DistanceScan scan_distances<Track::kFarthest>(std::span<const Point2>, Point2, double,
+                                                       double, std::vector<std::size_t>&);
 
 }  // namespace vcmm::geometry::internal

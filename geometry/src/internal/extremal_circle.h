@@ -98,8 +98,11 @@ struct ExactCircle {
 
 /// One O(n) pass about c over D̃ = fl(X² + Y²), X = fl(px − cx)·scale, Y likewise: the
 /// nearest (kNearest) or the farthest (kFarthest) point (lowest index on ties) and,
-/// appended to `flagged`, every index with D̃ ≥ threshold (kNearest: candidates outside a
-/// circle) or D̃ ≤ threshold (kFarthest: candidates inside). ~1-2 ns per point.
+/// appended in increasing index to `flagged`, every index with D̃ ≥ threshold (kNearest:
+/// candidates outside a circle) or D̃ ≤ threshold (kFarthest: candidates inside). Four
+/// points a step (AVX2 where the CPU has it, internal/isa.h), per-lane extremes merged with
+/// ties to the lowest index: every D̃ is the scalar expression's, so the result is the plain
+/// loop's bit for bit. ~0.5 ns per point (extremal_circle.cpp).
 enum class Track { kNearest, kFarthest };
 struct DistanceScan {
   double d2 = 0.0;        ///< the extreme D̃ (scaled units)
@@ -107,29 +110,13 @@ struct DistanceScan {
 };
 template <Track kTrack>
 DistanceScan scan_distances(std::span<const Point2> points, Point2 c, double scale,
-                            double threshold, std::vector<std::size_t>& flagged) {
-  constexpr bool kMin = kTrack == Track::kNearest;
-  double best = kMin ? std::numeric_limits<double>::infinity() : -1.0;
-  std::size_t arg = 0;
-  const Point2* p = points.data();
-  const std::size_t n = points.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double dx = (p[i].x - c.x) * scale, dy = (p[i].y - c.y) * scale;
-    const double d2 = dx * dx + dy * dy;
-    if (kMin ? d2 < best : d2 > best) [[unlikely]] {
-      best = d2;
-      arg = i;
-#if defined(__GNUC__)
-      // Keep a real, well-predicted branch: if-converted to conditional moves, every
-      // iteration would wait on the previous extreme (measured 1.7× slower).
-      asm volatile("" ::: "memory");
-#endif
-    }
-    if (kMin ? d2 >= threshold : d2 <= threshold) [[unlikely]]
-      flagged.push_back(i);
-  }
-  return {best, arg};
-}
+                            double threshold, std::vector<std::size_t>& flagged);
+extern template DistanceScan scan_distances<Track::kNearest>(std::span<const Point2>, Point2,
+                                                             double, double,
+                                                             std::vector<std::size_t>&);
+extern template DistanceScan scan_distances<Track::kFarthest>(std::span<const Point2>, Point2,
+                                                              double, double,
+                                                              std::vector<std::size_t>&);
 
 /// D̃ of one point, as computed by scan_distances.
 inline double scaled_distance2(Point2 p, Point2 c, double scale) {

@@ -149,6 +149,7 @@
 #include <string>
 #include <vector>
 
+#include "internal/distance_scan.h"
 #include "internal/exact.h"
 #include "internal/extremal_circle.h"
 #include "internal/minimum_zone_common.h"
@@ -778,63 +779,6 @@ struct Column {
 
 enum class LpStatus { optimal, failed };
 
-/// First index of the largest and of the smallest squared distance from c among points
-/// [lo, hi) — the strict comparisons of a plain loop, run in four interleaved lanes (the
-/// loop-carried max/min chains of one lane bound a plain loop to ~5 cycles a point; four
-/// lanes: ~25 % faster here, and faster than SSE2 selects, which need three operations each)
-/// and merged with ties to the lowest index, so the result is the plain loop's.
-struct BlockExtremes {
-  std::size_t imax = 0, imin = 0;
-  double smax = -1.0, smin = std::numeric_limits<double>::infinity();
-};
-BlockExtremes block_extremes(std::span<const Point2> points, std::size_t lo, std::size_t hi,
-                             Point2 c) {
-  constexpr std::size_t kLanes = 4;
-  std::array<BlockExtremes, kLanes> lane;
-  for (std::size_t l = 0; l < kLanes; ++l) lane[l].imax = lane[l].imin = lo;
-  std::size_t i = lo;
-  for (; i + kLanes <= hi; i += kLanes) {
-    for (std::size_t l = 0; l < kLanes; ++l) {
-      const double dx = points[i + l].x - c.x, dy = points[i + l].y - c.y;
-      const double s = dx * dx + dy * dy;
-      if (s > lane[l].smax) {
-        lane[l].smax = s;
-        lane[l].imax = i + l;
-      }
-      if (s < lane[l].smin) {
-        lane[l].smin = s;
-        lane[l].imin = i + l;
-      }
-    }
-  }
-  for (; i < hi; ++i) {  // the tail, each point in its lane as above
-    const double dx = points[i].x - c.x, dy = points[i].y - c.y;
-    const double s = dx * dx + dy * dy;
-    BlockExtremes& t = lane[(i - lo) % kLanes];
-    if (s > t.smax) {
-      t.smax = s;
-      t.imax = i;
-    }
-    if (s < t.smin) {
-      t.smin = s;
-      t.imin = i;
-    }
-  }
-  BlockExtremes out = lane[0];
-  for (std::size_t l = 1; l < kLanes; ++l) {
-    const BlockExtremes& t = lane[l];
-    if (t.smax > out.smax || (t.smax == out.smax && t.imax < out.imax)) {
-      out.smax = t.smax;
-      out.imax = t.imax;
-    }
-    if (t.smin < out.smin || (t.smin == out.smin && t.imin < out.imin)) {
-      out.smin = t.smin;
-      out.imin = t.imin;
-    }
-  }
-  return out;
-}
-
 /// The LP of (3) in dual form on a growing set of candidate columns. Columns hold the
 /// linearisation at c0 of their point: ρ − shift and e. `solve` optimises over the
 /// candidates; the driver first tries to certify that optimum exactly (its containment pass
@@ -854,7 +798,8 @@ class ChebyshevLp {
     shift_ = 0.0;
     const std::size_t n = points_.size(), blocks = block_count();
     for (std::size_t b = 0; b < blocks; ++b) {
-      const BlockExtremes e = block_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
+      const internal::DistanceExtremes e =
+          internal::distance_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
       add_candidate({e.imax, true});
       add_candidate({e.imin, false});
     }
@@ -939,7 +884,8 @@ class ChebyshevLp {
     const double R = y_[2] + shift_ + tol, r = std::max(0.0, -y_[3] + shift_ - tol);
     const double R2 = R * R, r2 = r * r;
     for (std::size_t b = 0; b < blocks; ++b) {
-      const BlockExtremes e = block_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
+      const internal::DistanceExtremes e =
+          internal::distance_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
       if (e.smax > R2 && add_candidate({e.imax, true})) ++added;
       if (e.smin < r2 && add_candidate({e.imin, false})) ++added;
     }

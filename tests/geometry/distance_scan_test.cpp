@@ -1,9 +1,11 @@
-// distance_scan_test.cpp — internal::scan_distances (internal/extremal_circle.h), the O(n)
-// pass of the MC and MI fitters, against the plain loop it replaces: the same extreme (value
-// and lowest index on ties) and the same flagged indices in the same order, bit for bit, in
-// both ISA variants (AVX2 and baseline), for sizes 1 … 40 (every tail length), duplicated
-// points (ties in every lane), thresholds that flag none, some and all points. Fixed seeds.
-#include "internal/extremal_circle.h"
+// distance_scan_test.cpp — the passes of internal/distance_scan.h against the plain loops
+// they replace: scan_distances (the MC and MI fitters' pass) gives the same extreme (value and
+// lowest index on ties) and the same flagged indices in the same order, distance_extremes
+// (the MZ fitter's per-block seeding and pricing) the same first nearest and farthest points
+// of every index range, bit for bit, in both ISA variants (AVX2 and baseline), for sizes
+// 1 … 40 (every tail length), duplicated points (ties in every lane), thresholds that flag
+// none, some and all points. Fixed seeds.
+#include "internal/distance_scan.h"
 #include "internal/isa.h"
 
 #include <gtest/gtest.h>
@@ -80,6 +82,54 @@ TEST(DistanceScan, EqualsThePlainLoopForEverySizeTieAndThreshold) {
         expect_plain<internal::Track::kFarthest>(p, c, scale, threshold, what);
       }
     }
+  }
+}
+
+/// distance_extremes over [lo, hi) against the plain loop, both ISA variants.
+void expect_plain_extremes(const std::vector<Point2>& p, std::size_t lo, std::size_t hi,
+                           Point2 c, const std::string& what) {
+  internal::DistanceExtremes want{lo, lo, -1.0, std::numeric_limits<double>::infinity()};
+  for (std::size_t i = lo; i < hi; ++i) {
+    const double dx = p[i].x - c.x, dy = p[i].y - c.y;
+    const double s = dx * dx + dy * dy;
+    if (s > want.smax) {
+      want.smax = s;
+      want.imax = i;
+    }
+    if (s < want.smin) {
+      want.smin = s;
+      want.imin = i;
+    }
+  }
+  for (bool baseline : {false, true}) {
+    std::optional<internal::ForceBaselineIsa> force;
+    if (baseline) force.emplace();
+    const internal::DistanceExtremes got = internal::distance_extremes(p, lo, hi, c);
+    EXPECT_EQ(got.smax, want.smax) << what << " baseline " << baseline;
+    EXPECT_EQ(got.imax, want.imax) << what << " baseline " << baseline;
+    EXPECT_EQ(got.smin, want.smin) << what << " baseline " << baseline;
+    EXPECT_EQ(got.imin, want.imin) << what << " baseline " << baseline;
+  }
+}
+
+TEST(DistanceScan, ExtremesOfEveryRangeEqualThePlainLoop) {
+  std::mt19937_64 rng(20261128);
+  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+  std::normal_distribution<double> noise(0.0, 1e-4);
+  const Point2 c{600.0, 500.0};
+  std::vector<Point2> p(64);
+  for (int trial = 0; trial < 40; ++trial) {
+    for (Point2& q : p) {
+      const double t = angle(rng), r = 85.5 + noise(rng);
+      q = {c.x + r * std::cos(t), c.y + r * std::sin(t)};
+    }
+    if (trial % 2 == 1)
+      for (int k = 0; k < 20; ++k) p[rng() % p.size()] = p[rng() % p.size()];
+    for (std::size_t lo = 0; lo < 20; ++lo)
+      for (std::size_t hi = lo + 1; hi <= p.size(); hi += 3)
+        expect_plain_extremes(p, lo, hi, c,
+                              "trial " + std::to_string(trial) + " [" + std::to_string(lo) +
+                                  ", " + std::to_string(hi) + ")");
   }
 }
 

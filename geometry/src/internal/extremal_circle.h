@@ -18,6 +18,7 @@
 
 #include <gmpxx.h>
 
+#include "internal/distance_scan.h"
 #include "internal/exact.h"
 #include "internal/precise_distance.h"
 #include "vcmm/geometry/point.h"
@@ -95,28 +96,6 @@ struct ExactCircle {
  private:
   mutable std::optional<PreciseCircle> precise_;
 };
-
-/// One O(n) pass about c over D̃ = fl(X² + Y²), X = fl(px − cx)·scale, Y likewise: the
-/// nearest (kNearest) or the farthest (kFarthest) point (lowest index on ties) and,
-/// appended in increasing index to `flagged`, every index with D̃ ≥ threshold (kNearest:
-/// candidates outside a circle) or D̃ ≤ threshold (kFarthest: candidates inside). Four
-/// points a step (AVX2 where the CPU has it, internal/isa.h), per-lane extremes merged with
-/// ties to the lowest index: every D̃ is the scalar expression's, so the result is the plain
-/// loop's bit for bit. ~0.5 ns per point (extremal_circle.cpp).
-enum class Track { kNearest, kFarthest };
-struct DistanceScan {
-  double d2 = 0.0;        ///< the extreme D̃ (scaled units)
-  std::size_t index = 0;  ///< its point
-};
-template <Track kTrack>
-DistanceScan scan_distances(std::span<const Point2> points, Point2 c, double scale,
-                            double threshold, std::vector<std::size_t>& flagged);
-extern template DistanceScan scan_distances<Track::kNearest>(std::span<const Point2>, Point2,
-                                                             double, double,
-                                                             std::vector<std::size_t>&);
-extern template DistanceScan scan_distances<Track::kFarthest>(std::span<const Point2>, Point2,
-                                                              double, double,
-                                                              std::vector<std::size_t>&);
 
 /// D̃ of one point, as computed by scan_distances.
 inline double scaled_distance2(Point2 p, Point2 c, double scale) {

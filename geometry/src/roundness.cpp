@@ -70,20 +70,31 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
   if (request.filter_cutoff_upr) {
     // A closed profile takes the closed filter; an arc (a gap wider than λc/2 = π/f_c, which
     // the closed filter refuses) the open-profile filter.
+    const double cutoff = *request.filter_cutoff_upr;
     validate_profile(points, 8, "gaussian_filtered_profile");
     const LeastSquaresCircle raw_ls = internal::fit_least_squares_circle(points);
-    const double max_gap = kHalfTurn / *request.filter_cutoff_upr;
-    const bool open = !internal::has_angular_steps_below(points, raw_ls.center, max_gap) &&
-                      angular_coverage(points, raw_ls.center).largest_gap_rad > max_gap;
+    LeastSquaresCircle* ls_out = request.least_squares ? &filtered_ls.emplace() : nullptr;
+    FilteredProfile f;
     // The closed filter about the LS circle just fitted (the same fit it would repeat); it
     // builds its output on the rays from that centre and so gives the output's LS circle in
     // one Gauss-Newton step (gaussian_filter.h; the full fit where that step is not exact).
-    FilteredProfile f;
-    if (open) {
-      f = gaussian_filtered_open_profile(points, *request.filter_cutoff_upr);
+    // Closed or not: when no FFT-path profile can have a gap beyond λc/2 (1.5 grid steps,
+    // 3π/(n − 1), below π/f_c with a margin far above rounding), the closed filter decides it
+    // itself — its nonuniform path sorts the same angles angular_coverage would; otherwise
+    // (f_c near n/3 or above) the coverage is taken first, as the filter cannot tell.
+    const auto n = static_cast<double>(points.size());
+    bool closed = false;
+    if (n - 1.0 > 3.0 * cutoff * (1.0 + 1e-6)) {
+      closed = internal::filter_closed_profile_if_closed(points, cutoff, raw_ls, f, ls_out);
     } else {
-      gaussian_filtered_profile(points, *request.filter_cutoff_upr, raw_ls, f,
-                                request.least_squares ? &filtered_ls.emplace() : nullptr);
+      const double max_gap = kHalfTurn / cutoff;
+      closed = internal::has_angular_steps_below(points, raw_ls.center, max_gap) ||
+               !(angular_coverage(points, raw_ls.center).largest_gap_rad > max_gap);
+      if (closed) gaussian_filtered_profile(points, cutoff, raw_ls, f, ls_out);
+    }
+    if (!closed) {
+      f = gaussian_filtered_open_profile(points, cutoff);
+      filtered_ls.reset();
     }
     out.filter_path = f.path;
     out.filtered_points = std::move(f.points);

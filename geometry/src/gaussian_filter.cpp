@@ -16,12 +16,18 @@
 // min(k, n − k)). This is done by a real FFT: no truncation of s, no end effects (the profile
 // is closed), error ~ε·log n of the profile's amplitude. Start angle and rotational sense do
 // not matter (H is real and even). Detection: every direction about the filter (LS) centre lies
-// within a quarter step of the grid θ_0 ± 2πj/n (cross and dot products with cached rotation
-// tables, no arctangent). Real scans are equiangular about the machine's nominal centre, not
-// about the LS centre, so their angles sit off the grid by up to ~e/R (eccentricity e); the FFT
-// result is kept only when the first-order effect of that displacement, 2·δ_max·max|w'|, is at
-// most 1e-3 of the filtered peak-to-valley (or 1e-10 mm) — see grid_error_is_negligible —
-// otherwise the nonuniform path below is used. A closing point that repeats the first one
+// less than half a step off the grid θ_0 ± 2πj/n (cross and dot products with cached rotation
+// tables, no arctangent): then sample j is nearer grid position j than any other and the input
+// order is the angular order. Real scans are equiangular about the machine's nominal centre, not
+// about the LS centre, so their angles sit off the grid by up to ~e/R (eccentricity e) plus the
+// tangential part of the probing noise (~σ/R per sample, relative to sample 0); the FFT result
+// is kept only when the first-order effect of that displacement, 2·δ_max·max|w'|, is at most
+// 1e-3 of the filtered peak-to-valley (or 1e-10 mm) — see grid_error_is_negligible — otherwise
+// the nonuniform path below is used. (The limit was a quarter step until 2026-11: dense scans
+// then fell off the FFT path on noise alone — at 36 000 points of the 171 mm ring, 0.7 µm noise
+// displaces samples by ~5e-5 rad against a quarter step of 4.4e-5 rad — and took the nonuniform
+// path, ~500× slower, whose quadrature weights then fluctuate with the noise by ±30 % of a
+// step; the equal weights of the scan's own grid are the standard discrete filter.) A closing point that repeats the first one
 // (within a quarter step in angle: a closed scan) is detected: the two deviations at that angle
 // are averaged, the n − 1 distinct angles are filtered, and the repeated point gets the
 // filtered value of the first.
@@ -369,20 +375,20 @@ const GridTable& grid_table(Eigen::Index count) {
 }
 
 /// The verdict on the grid displacements once sin δ_j (in v.sin_delta) is known and whether
-/// every |r_j| cos δ_j > 0: the largest |sin δ_j|, or +∞ when some ray is more than a quarter
-/// step off its grid position (then the samples are not in equiangular order).
+/// every |r_j| cos δ_j > 0: the largest |sin δ_j|, or +∞ when some ray is half a step or more
+/// off its grid position (then the samples are not in equiangular order).
 double grid_verdict(const Rays& v, Eigen::Index count, bool all_cos_positive) {
   const double step = 2 * kPi / static_cast<double>(count);
   const double max_sin = v.sin_delta.head(count).abs().maxCoeff();
-  if (!all_cos_positive || !(max_sin <= std::sin(0.25 * step)))
+  if (!all_cos_positive || !(max_sin < std::sin(0.5 * step)))
     return std::numeric_limits<double>::infinity();
   return max_sin;
 }
 
 /// Largest |sin δ_j| of rays 0, …, count−1 against the equiangular grid θ_j = θ_0 +
 /// σ·2πj/count (σ = ±1, the rotational sense of rays 0 → 1), with sin δ_j stored in
-/// v.sin_delta; or +∞ when some ray is more than a quarter step off its grid position (then
-/// the samples are not in equiangular order at all). Ray j is rotated back by σ·2πj/count with
+/// v.sin_delta; or +∞ when some ray is half a step or more off its grid position (then the
+/// samples are not in equiangular order at all). Ray j is rotated back by σ·2πj/count with
 /// cached cos/sin tables and compared with ray 0 by cross and dot products (no arctangent):
 /// sin δ_j = (r_0 × r_j') / (|r_0||r_j|). (filter_about computes the same values for count = n
 /// in its first pass; this is the separate pass for count = n − 1.)

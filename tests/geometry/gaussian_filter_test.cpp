@@ -335,6 +335,48 @@ TEST(GaussianFilteredProfile, PathDetectionAnyStartAndSenseAndClosingPoint) {
   EXPECT_EQ(gaussian_filtered_profile(ecc_pts, 50).path, FilterPath::fft);
 }
 
+// Dense scans: samples off the grid by more than a quarter step but less than half (what the
+// tangential probing noise does to 36 000-point scans of the 171 mm ring) keep the FFT path
+// when the first-order effect is small, and agree with the nonuniform path to the acceptance
+// tolerance (1e-3 of the filtered peak-to-valley) plus its quadrature error; a sample half a
+// step off or more breaks the angular order: the nonuniform path. (Under the earlier
+// quarter-step rule the first profile took the nonuniform path.)
+TEST(GaussianFilteredProfile, DisplacementsBetweenAQuarterAndHalfAStepKeepTheFftPath) {
+  const double amplitude = 1e-4;
+  for (std::uint64_t seed : {3u, 4u, 5u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    // Uniform angle jitter of ±¼ step about the grid: against sample 0's position (which
+    // anchors the grid) samples sit up to ¼ step + |jitter of sample 0| off — beyond a quarter
+    // step, below half (checked here on the angles about the filter centre).
+    const std::size_t n = 7200;
+    const auto pts = ring_profile(single_harmonic_ring(n, 2, amplitude, 0.5, seed));
+    const FilteredProfile f = gaussian_filtered_profile(pts, 50);
+    EXPECT_EQ(f.path, FilterPath::fft);
+    const FilteredProfile fn = gaussian_filtered_profile(pts, 50, FilterPathChoice::nonuniform);
+    ASSERT_EQ(fn.path, FilterPath::nonuniform);
+    const double step = 2 * kPi / static_cast<double>(n);
+    const auto angle = [&](std::size_t i) {
+      return std::atan2(pts[i].y - f.filter_center.y, pts[i].x - f.filter_center.x);
+    };
+    double off_max = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double off = std::remainder(angle(i) - angle(0) - step * static_cast<double>(i),
+                                        2 * kPi);
+      off_max = std::max(off_max, std::fabs(off));
+    }
+    EXPECT_GT(off_max, 0.25 * step);
+    EXPECT_LT(off_max, 0.5 * step);
+    const auto d = filtered_deviations(f), dn = filtered_deviations(fn);
+    const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
+    double worst = 0.0;
+    for (std::size_t i = 0; i < d.size(); ++i) worst = std::max(worst, std::fabs(d[i] - dn[i]));
+    EXPECT_LT(worst, 1e-3 * (*hi - *lo) + 1e-12);
+    // ±0.55 step: some sample is half a step or more off its grid position.
+    const auto far = ring_profile(single_harmonic_ring(n, 2, amplitude, 1.1, seed));
+    EXPECT_EQ(gaussian_filtered_profile(far, 50).path, FilterPath::nonuniform);
+  }
+}
+
 // The nonuniform path (trapezoidal quadrature of the convolution integral) against the analytic
 // filtered profile H(k) A cos(kθ + φ), on profiles whose sampling angles are jittered by up to
 // ±jitter/2 of a step h. Its error is first order in the jitter and second order in the step

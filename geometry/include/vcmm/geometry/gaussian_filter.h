@@ -42,7 +42,8 @@ struct FilteredProfile {
 
 /// Gaussian filter of a closed profile's radial deviations (about its LS centre).
 /// Samples whose directions lie on an equiangular grid (in angular order, any start angle,
-/// either sense; real scans sit slightly off the grid about the LS centre) are filtered by
+/// either sense; real scans sit off the grid about the LS centre by eccentricity and noise,
+/// accepted up to just under half a step) are filtered by
 /// FFT with the exact transmission, kept when the grid displacement's first-order effect is
 /// below 1e-3 of the filtered peak-to-valley (bounded in one pass, or computed by one more
 /// FFT when the bound is not enough: gaussian_filter.cpp); other data by direct convolution

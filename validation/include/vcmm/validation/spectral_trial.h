@@ -67,7 +67,7 @@ struct SpectralApplicability {
 
 /// The spectral trial applies when: the roundness is filtered (a cut-off is set); the
 /// estimate's points lie, in input order, on an equiangular grid of n directions about their
-/// LS centre (within a quarter step, as the filter's FFT path requires, and without a repeated
+/// LS centre (within a quarter step, stricter than the filter's FFT path, and without a repeated
 /// closing point); the filter takes its FFT path on them; and the radial variance of the white
 /// sources is the same at every point (normals within 1e-3 of radial when roughness is drawn).
 /// Never throws for a valid measurement; InvalidInput for an invalid one.

@@ -78,13 +78,14 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
     // The closed filter about the LS circle just fitted (the same fit it would repeat); it
     // builds its output on the rays from that centre and so gives the output's LS circle in
     // one Gauss-Newton step (gaussian_filter.h; the full fit where that step is not exact).
-    // Closed or not: when no FFT-path profile can have a gap beyond λc/2 (1.5 grid steps,
-    // 3π/(n − 1), below π/f_c with a margin far above rounding), the closed filter decides it
-    // itself — its nonuniform path sorts the same angles angular_coverage would; otherwise
-    // (f_c near n/3 or above) the coverage is taken first, as the filter cannot tell.
+    // Closed or not: when no FFT-path profile can have a gap beyond λc/2 (its rays are each
+    // less than half a step off an equiangular grid, so neighbours are less than 2 steps,
+    // 4π/(n − 1), apart: below π/f_c with a margin far above rounding), the closed filter
+    // decides it itself — its nonuniform path sorts the same angles angular_coverage would;
+    // otherwise (f_c near n/4 or above) the coverage is taken first, as the filter cannot tell.
     const auto n = static_cast<double>(points.size());
     bool closed = false;
-    if (n - 1.0 > 3.0 * cutoff * (1.0 + 1e-6)) {
+    if (n - 1.0 > 4.0 * cutoff * (1.0 + 1e-6)) {
       closed = internal::filter_closed_profile_if_closed(points, cutoff, raw_ls, f, ls_out);
     } else {
       const double max_gap = kHalfTurn / cutoff;

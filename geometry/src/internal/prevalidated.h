@@ -41,9 +41,10 @@ RoundnessParameters roundness_parameters_of_valid(std::span<const Point2> points
 /// (`out` is then unusable): the closed filter, or the verdict that the profile has an
 /// angular gap wider than λc/2 — found on the nonuniform path by the filter's own sorted
 /// angles (the gaps angular_coverage takes, bit for bit). The FFT path tests no gap: its
-/// rays are each within a quarter step of an equiangular grid, so no gap exceeds 1.5 grid
-/// steps (3π/(n − 1) for a repeated closing point). Precondition (not checked): the points
-/// passed validate_profile(points, 8, …); the other checks (cut-off, circle) throw as there.
+/// rays are each less than half a step off an equiangular grid, so neighbours are less than
+/// 2 grid steps apart (4π/(n − 1) for a repeated closing point). Precondition (not
+/// checked): the points passed validate_profile(points, 8, …); the other checks (cut-off,
+/// circle) throw as there.
 bool filter_closed_profile_if_closed(std::span<const Point2> points, double cutoff_upr,
                                      const LeastSquaresCircle& least_squares,
                                      FilteredProfile& out,

@@ -151,6 +151,7 @@
 
 #include "internal/distance_scan.h"
 #include "internal/exact.h"
+#include "internal/isa.h"
 #include "internal/extremal_circle.h"
 #include "internal/minimum_zone_common.h"
 #include "internal/minimum_zone_exact.h"
@@ -395,6 +396,65 @@ bool same_point_as_contact(std::span<const Point2> points, const Quad& q, Point2
          p == points[q.inner[1]];
 }
 
+/// The branch-free map of containment_pass (see there) over points [lo, hi): squared
+/// distances s_i from (cx, cy), squared deviations from the mean circle rm (series on a thin
+/// zone, else the direct formula) and the flag "not surely placed" (s_i ∉ (t_in, t_out)).
+struct ContainmentMap {
+  double cx, cy, rm, rm2, inv, t_out, t_in;
+};
+[[gnu::always_inline]] inline void containment_map_body(bool thin, const ContainmentMap& m,
+                                                        const Point2* __restrict p,
+                                                        std::size_t lo, std::size_t hi,
+                                                        double* __restrict sq,
+                                                        double* __restrict dev2,
+                                                        double* __restrict flag) {
+  const double cx = m.cx, cy = m.cy, rm = m.rm, rm2 = m.rm2, inv = m.inv;
+  const double t_out = m.t_out, t_in = m.t_in;
+  if (thin) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double dx = p[i].x - cx, dy = p[i].y - cy;
+      const double s = dx * dx + dy * dy;
+      const double x = (s - rm2) * inv;
+      const double dev = rm * x * (1.0 + x * (-0.5 + x * (0.5 - 0.625 * x)));
+      sq[i] = s;
+      dev2[i] = dev * dev;
+      flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
+    }
+  } else {
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double dx = p[i].x - cx, dy = p[i].y - cy;
+      const double s = dx * dx + dy * dy;
+      const double dev = (s - rm2) / (std::sqrt(s) + rm);
+      sq[i] = s;
+      dev2[i] = dev * dev;
+      flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
+    }
+  }
+}
+// Compiled for the baseline ISA and for AVX2, chosen per call (internal/isa.h): the same
+// element-wise operations (no FMA: -ffp-contract=off; sqrt and division correctly rounded),
+// so the same bits.
+void containment_map_baseline(bool thin, const ContainmentMap& m, const Point2* p,
+                              std::size_t lo, std::size_t hi, double* sq, double* dev2,
+                              double* flag) {
+  containment_map_body(thin, m, p, lo, hi, sq, dev2, flag);
+}
+#if VCMM_GEOMETRY_X86
+__attribute__((target("avx2"))) void containment_map_avx2(bool thin, const ContainmentMap& m,
+                                                          const Point2* p, std::size_t lo,
+                                                          std::size_t hi, double* sq,
+                                                          double* dev2, double* flag) {
+  containment_map_body(thin, m, p, lo, hi, sq, dev2, flag);
+}
+#endif
+void containment_map(bool thin, const ContainmentMap& m, const Point2* p, std::size_t lo,
+                     std::size_t hi, double* sq, double* dev2, double* flag) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx2()) return containment_map_avx2(thin, m, p, lo, hi, sq, dev2, flag);
+#endif
+  containment_map_baseline(thin, m, p, lo, hi, sq, dev2, flag);
+}
+
 /// One pass: exact containment of every point in the closed annulus of `k` — a floating
 /// filter with rigorous thresholds (surely inside, surely outside), exact rational
 /// comparison only for the ambiguous rest, stopping at the first violation — and RONq about
@@ -445,26 +505,7 @@ PassResult containment_pass(std::span<const Point2> points, const Candidate& k,
   std::vector<std::size_t>& ambiguous = out.ambiguous;
   for (std::size_t lo = 0; lo < n; lo += kBlock) {
     const std::size_t hi = std::min(lo + kBlock, n);
-    if (thin) {
-      for (std::size_t i = lo; i < hi; ++i) {
-        const double dx = p[i].x - cx, dy = p[i].y - cy;
-        const double s = dx * dx + dy * dy;
-        const double x = (s - rm2) * inv;
-        const double dev = rm * x * (1.0 + x * (-0.5 + x * (0.5 - 0.625 * x)));
-        sq[i] = s;
-        dev2[i] = dev * dev;
-        flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
-      }
-    } else {
-      for (std::size_t i = lo; i < hi; ++i) {
-        const double dx = p[i].x - cx, dy = p[i].y - cy;
-        const double s = dx * dx + dy * dy;
-        const double dev = (s - rm2) / (std::sqrt(s) + rm);
-        sq[i] = s;
-        dev2[i] = dev * dev;
-        flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
-      }
-    }
+    containment_map(thin, {cx, cy, rm, rm2, inv, t_out, t_in}, p, lo, hi, sq, dev2, flag);
     for (std::size_t b = lo; b < hi; b += 4) {
       if (flag[b] + flag[b + 1] + flag[b + 2] + flag[b + 3] == 0.0) continue;
       for (std::size_t i = b; i < std::min(b + 4, n); ++i) {

@@ -88,6 +88,7 @@
 #include "internal/fft.h"
 #include "internal/isa.h"
 #include "internal/least_squares_on_rays.h"
+#include "internal/near_circle.h"
 #include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
@@ -525,38 +526,43 @@ void check_filter_input(std::span<const Point2> points, double cutoff_upr, const
 /// The first pass of filter_about (see there), as a function of its own with restrict
 /// pointers so that GCC vectorises it. xy: the points as x, y pairs; tc, ts: the grid table
 /// (ts times the sense σ here); (x0, y0): the unit ray 0. Stores the rays, the deviations, the
-/// reciprocal lengths and sin δ_j; of x_j and |r_j| cos δ_j only the verdicts are needed
-/// (every |x_j| ≤ 1e-3: the series holds; every cos term > 0), kept as flags (integer OR:
-/// vectorised like the rest, and exact — the same verdicts as max/min reductions).
+/// reciprocal lengths and sin δ_j; distances by the series of degree D of internal/
+/// near_circle.h. Of s_j and |r_j| cos δ_j only the verdicts are needed (every |s_j| within
+/// the series' range; every cos term > 0), kept as flags (integer OR: vectorised like the rest,
+/// and exact — the same verdicts as max/min reductions).
 struct SetupPass {
-  double cx, cy, r2, half_inv_r2, radius, inv_radius, x0, y0, sense;
+  internal::NearCircle k;  ///< about the filter radius R
+  double cx, cy;
+  double dev0;   ///< R₀ − R (exact: R₀ is R to 26 bits)
+  double s_max;  ///< the series' range
+  double x0, y0, sense;
 };
 struct SetupVerdict {
-  bool off_series;        ///< some |x_j| > 1e-3 (or not a number)
+  bool off_series;        ///< some |s_j| > s_max (or not a number)
   bool non_positive_cos;  ///< some |r_j| cos δ_j ≤ 0 (or not a number)
 };
+template <int D>
 [[gnu::always_inline]] inline SetupVerdict setup_pass_body(
-    const SetupPass& k, Eigen::Index count, const double* __restrict xy,
+    const SetupPass& p, Eigen::Index count, const double* __restrict xy,
     const double* __restrict tc, const double* __restrict ts, double* __restrict rx,
     double* __restrict ry, double* __restrict dev, double* __restrict inv,
     double* __restrict sin_delta) {
-  const double cx = k.cx, cy = k.cy, r2 = k.r2, h = k.half_inv_r2, radius = k.radius;
-  const double inv_radius = k.inv_radius, x0 = k.x0, y0 = k.y0, sense = k.sense;
+  const internal::NearCircle k = p.k;
+  const double cx = p.cx, cy = p.cy, dev0 = p.dev0, s_max = p.s_max;
+  const double x0 = p.x0, y0 = p.y0, sense = p.sense;
   std::int64_t off_series = 0, non_positive_cos = 0;
   for (Eigen::Index i = 0; i < count; ++i) {
     const double dx = xy[2 * i] - cx, dy = xy[2 * i + 1] - cy;
-    const double s2 = dx * dx + dy * dy;
-    const double x = (s2 - r2) * h;
-    const double inv_i =
-        inv_radius * (1.0 + x * (-1.0 + x * (1.5 + x * (-2.5 + x * (4.375 + x * -7.875)))));
+    const double s = internal::near_circle_s(dx * dx + dy * dy, k);
+    const double inv_i = internal::near_circle_inverse<D>(s, k);
     const double c = tc[i], sn = sense * ts[i];
     const double xr = dx * c + dy * sn, yr = dy * c - dx * sn;
     rx[i] = dx;
     ry[i] = dy;
-    dev[i] = radius * x * (1.0 + x * (-0.5 + x * (0.5 + x * (-0.625 + x * 0.875))));
+    dev[i] = dev0 + internal::near_circle_offset<D>(s, k);  // (R₀ − R) + (r − R₀)
     inv[i] = inv_i;
     sin_delta[i] = (x0 * yr - y0 * xr) * inv_i;
-    off_series |= static_cast<std::int64_t>(!(std::fabs(x) <= 1e-3));
+    off_series |= static_cast<std::int64_t>(!(std::fabs(s) <= s_max));
     non_positive_cos |= static_cast<std::int64_t>(!(x0 * xr + y0 * yr > 0.0));
   }
   return {off_series != 0, non_positive_cos != 0};
@@ -570,30 +576,44 @@ struct SetupArrays {
 
 // The pass compiled for the baseline ISA and for AVX2, chosen per call (internal/isa.h): the
 // same element-wise operations, so the same bits.
-SetupVerdict setup_pass_baseline(const SetupPass& k, Eigen::Index count, const SetupArrays& a) {
-  return setup_pass_body(k, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
+template <int D>
+SetupVerdict setup_pass_baseline(const SetupPass& p, Eigen::Index count, const SetupArrays& a) {
+  return setup_pass_body<D>(p, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
 }
 #if VCMM_GEOMETRY_X86
-__attribute__((target("avx2"))) SetupVerdict setup_pass_avx2(const SetupPass& k,
+template <int D>
+__attribute__((target("avx2"))) SetupVerdict setup_pass_avx2(const SetupPass& p,
                                                              Eigen::Index count,
                                                              const SetupArrays& a) {
-  return setup_pass_body(k, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
+  return setup_pass_body<D>(p, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
 }
 #endif
-SetupVerdict setup_pass(const SetupPass& k, Eigen::Index count, const SetupArrays& a) {
+template <int D>
+SetupVerdict setup_pass_variant(const SetupPass& p, Eigen::Index count, const SetupArrays& a) {
 #if VCMM_GEOMETRY_X86
-  if (internal::use_avx2()) return setup_pass_avx2(k, count, a);
+  if (internal::use_avx2()) return setup_pass_avx2<D>(p, count, a);
 #endif
-  return setup_pass_baseline(k, count, a);
+  return setup_pass_baseline<D>(p, count, a);
+}
+/// The pass with the series of degree 3, 4 or 6.
+SetupVerdict setup_pass(int degree, const SetupPass& p, Eigen::Index count,
+                        const SetupArrays& a) {
+  switch (degree) {
+    case 3: return setup_pass_variant<3>(p, count, a);
+    case 4: return setup_pass_variant<4>(p, count, a);
+    default: return setup_pass_variant<6>(p, count, a);
+  }
 }
 
 /// The filter of validated points about the circle (center, radius) (file comment), into
 /// `out` (storage reused), and the LS circle of the output into *filtered_ls when asked.
-/// With `not_closed` given, a profile that is not closed sets it (and leaves `out` unusable)
+/// deviation_bound: the largest |r_i − R| expected (RONt of the LS circle), which picks the
+/// degree of the distance series (a wrong value costs time, never accuracy). With
+/// `not_closed` given, a profile that is not closed sets it (and leaves `out` unusable)
 /// instead of throwing.
 void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 center,
-                  double radius, FilterPathChoice choice, const char* caller,
-                  FilteredProfile& out, LeastSquaresCircle* filtered_ls,
+                  double radius, double deviation_bound, FilterPathChoice choice,
+                  const char* caller, FilteredProfile& out, LeastSquaresCircle* filtered_ls,
                   bool* not_closed = nullptr) {
   const std::size_t n = points.size();
   out.filter_center = center;
@@ -602,39 +622,48 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
   const auto count = static_cast<Eigen::Index>(n);
   thread_local Rays v;
   v.resize(count);
-  // Rays p_i − c, and the radial deviations d_i = r_i − R and 1/r_i. Near the circle
-  // (|x_i| ≤ 1e-3 for every point, x = (s − R²)/(2R²), s = r²: deviations up to ~1e-3 R,
-  // i.e. any roundness profile) by the series of r = R √(1 + 2x) and 1/r in x, truncated
-  // where the next term is below 1.4e-17 relative: no square root or division per point (the
-  // two cost ~6 µs at n = 3600), all in one vectorised pass, the range of x checked after it.
-  // Rounding: s carries ~1 ulp of R², so d carries ~ulp(R²)/(2R) ≈ ulp(R), as r = √s would;
-  // the rounding of R² shifts every d_i alike, which the filter passes unchanged (H(0) = 1)
-  // and the reconstruction (w_i − d_i) cancels. Otherwise the direct formulas.
+  // Rays p_i − c, and the radial deviations d_i = r_i − R and 1/r_i. Near the circle (|s_i| ≤
+  // 2⁻⁹ for every point, s = (r² − R₀²)/R₀², R₀ = R to 26 bits: deviations up to ~1e-3 R, i.e.
+  // any roundness profile) by the series of internal/near_circle.h: no square root or division
+  // per point (the two cost ~6 µs at n = 3600), all in one vectorised pass, the range of s
+  // checked after it. 1/r_i is within ½ ulp + 2⁻⁵⁹ relative of 1/√(r_i²), d_i = (R₀ − R) +
+  // (r_i − R₀) rounds once at the size of the deviation. The degree is the smallest whose range
+  // covers the deviations the caller expects (deviation_bound: RONt of the LS circle bounds
+  // every |r_i − R|); when some point falls outside it the pass is redone with degree 6, and
+  // beyond that range the direct formulas are used.
   // The same pass also measures the grid displacements for count = n (as
   // max_grid_displacement_sine would, from the same values): sin δ_j and |r_j| cos δ_j.
-  const double r2 = radius * radius, half_inv_r2 = 0.5 / r2, inv_radius = 1.0 / radius;
   const double cx = center.x, cy = center.y;
-  const auto inverse_length = [inv_radius](double x) {
-    return inv_radius * (1.0 + x * (-1.0 + x * (1.5 + x * (-2.5 + x * (4.375 + x * -7.875)))));
-  };
-  SetupVerdict verdict{};
-  {
+  SetupVerdict verdict{true, true};
+  const internal::NearCircle k = internal::near_circle_about(radius);
+  for (int degree = internal::near_circle_degree_for(radius, deviation_bound); degree != 0;
+       degree = degree < 6 ? 6 : 0) {
     // Unit ray 0 and the sense of rays 0 → 1, from the values the loop computes.
     const double ax = points[0].x - cx, ay = points[0].y - cy;
     const double bx = points[1].x - cx, by = points[1].y - cy;
-    const double inv0 = inverse_length((ax * ax + ay * ay - r2) * half_inv_r2);
+    const double s0 = internal::near_circle_s(ax * ax + ay * ay, k);
+    const double inv0 = degree == 3   ? internal::near_circle_inverse<3>(s0, k)
+                        : degree == 4 ? internal::near_circle_inverse<4>(s0, k)
+                                      : internal::near_circle_inverse<6>(s0, k);
     const double x0 = ax * inv0, y0 = ay * inv0;
     const double sense = ax * by - ay * bx >= 0.0 ? 1.0 : -1.0;
     const GridTable& table = grid_table(count);
     static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
-    const SetupPass k{cx, cy, r2, half_inv_r2, radius, inv_radius, x0, y0, sense};
-    verdict = setup_pass(k, count,
+    const SetupPass p{k,  cx, cy, k.r0 - radius, internal::near_circle_s_max(degree),
+                      x0, y0, sense};
+    verdict = setup_pass(degree, p, count,
                          {reinterpret_cast<const double*>(points.data()), table.cos.data(),
                           table.sin.data(), v.x.data(), v.y.data(), v.deviation.data(),
                           v.inv_r.data(), v.sin_delta.data()});
+    if (!verdict.off_series) break;
   }
   const bool series = !verdict.off_series;
   if (!series) {
+    // The direct formulas (the rays too: no series pass may have run).
+    for (Eigen::Index i = 0; i < count; ++i) {
+      v.x[i] = points[static_cast<std::size_t>(i)].x - cx;
+      v.y[i] = points[static_cast<std::size_t>(i)].y - cy;
+    }
     v.r = (v.x.square() + v.y.square()).sqrt();
     if (!(v.r.minCoeff() > 0.0)) {
       Eigen::Index at_center = 0;
@@ -705,11 +734,13 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
 /// about the centre are tried (ties: by x, then y, then input index), and the FFT result is
 /// used when that order is equiangular — a shuffled scan gives the scan's result (to
 /// rounding), not the nonuniform path's. Costs nothing on profiles given in angular order.
-void filter_any_order(std::span<const Point2> points, double cutoff_upr, Point2 center,
-                      double radius, FilterPathChoice choice, const char* caller,
+void filter_any_order(std::span<const Point2> points, double cutoff_upr,
+                      const LeastSquaresCircle& ls, FilterPathChoice choice, const char* caller,
                       FilteredProfile& out, LeastSquaresCircle* filtered_ls,
                       bool* not_closed = nullptr) {
-  filter_about(points, cutoff_upr, center, radius, choice, caller, out, filtered_ls,
+  const Point2 center = ls.center;
+  const double radius = ls.radius, bound = ls.ron.ront;  // |r_i − R| ≤ RONt
+  filter_about(points, cutoff_upr, center, radius, bound, choice, caller, out, filtered_ls,
                not_closed);
   if (not_closed && *not_closed) return;
   if (out.path == FilterPath::fft || choice == FilterPathChoice::nonuniform) return;
@@ -731,7 +762,7 @@ void filter_any_order(std::span<const Point2> points, double cutoff_upr, Point2 
   std::vector<Point2> sorted(n);
   for (std::size_t j = 0; j < n; ++j) sorted[j] = points[order[j]];
   FilteredProfile s;
-  filter_about(sorted, cutoff_upr, center, radius, choice, caller, s, nullptr);
+  filter_about(sorted, cutoff_upr, center, radius, bound, choice, caller, s, nullptr);
   if (s.path != FilterPath::fft) return;
   for (std::size_t j = 0; j < n; ++j) out.points[order[j]] = s.points[j];
   out.path = FilterPath::fft;
@@ -768,7 +799,7 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
   check_filter_input(points, cutoff_upr, kCaller);
   const LeastSquaresCircle ls = internal::fit_least_squares_circle(points);
   FilteredProfile out;
-  filter_any_order(points, cutoff_upr, ls.center, ls.radius, choice, kCaller, out, nullptr);
+  filter_any_order(points, cutoff_upr, ls, choice, kCaller, out, nullptr);
   return out;
 }
 
@@ -786,8 +817,8 @@ void gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr
                                FilterPathChoice choice) {
   constexpr const char* kCaller = "gaussian_filtered_profile";
   check_filter_input(points, cutoff_upr, kCaller, &least_squares);
-  filter_any_order(points, cutoff_upr, least_squares.center, least_squares.radius, choice,
-                   kCaller, out, filtered_least_squares);
+  filter_any_order(points, cutoff_upr, least_squares, choice, kCaller, out,
+                   filtered_least_squares);
 }
 
 bool internal::filter_closed_profile_if_closed(std::span<const Point2> points,
@@ -798,9 +829,8 @@ bool internal::filter_closed_profile_if_closed(std::span<const Point2> points,
   constexpr const char* kCaller = "gaussian_filtered_profile";
   check_filter_parameters(points, cutoff_upr, kCaller, &least_squares);
   bool not_closed = false;
-  filter_any_order(points, cutoff_upr, least_squares.center, least_squares.radius,
-                   FilterPathChoice::automatic, kCaller, out, filtered_least_squares,
-                   &not_closed);
+  filter_any_order(points, cutoff_upr, least_squares, FilterPathChoice::automatic, kCaller, out,
+                   filtered_least_squares, &not_closed);
   return !not_closed;
 }
 

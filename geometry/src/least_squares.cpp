@@ -58,10 +58,22 @@
 // simulated trials: centre within 2e-14 mm, RONt within 3e-14 mm
 // (tests/geometry/gaussian_filter_trial_test.cpp).
 //
+// Distances without square roots. Each GN pass needs r_i and u_i = (p_i − c)/r_i. The points
+// of a roundness profile lie within ~1e-3 R of the circle, where internal/near_circle.h gives
+// both by a short series in s = (q − R₀²)/R₀² (q = |p_i − c|², R₀ = r0 to 26 bits): r_i within
+// ½ ulp + 2⁻⁵⁹ relative of √q — equal to std::sqrt(q) but near rounding midpoints, at most 1 ulp
+// from it — and 1/r_i likewise. Each pass takes the smallest degree (3, 4, 6) whose range
+// covers |s| as bounded from the previous pass (the first pass, at the Kåsa centre, degree 4:
+// deviations up to ~1e-4 R), measures max |s| and is redone with the degree it needs when a
+// point falls outside (then with square root and division beyond |s| = 2⁻⁹). The centre and
+// radius move by ulps at most against square roots (the rare r_i that differ by an ulp).
+//
 // Cost: one pass for the start (no square root), then per GN iteration one vectorised pass
-// with a square root and a division per point, and a final cheap pass over the stored
-// distances (extremes, RONq). Typically 2 iterations: the step from the Kåsa centre, then
-// the pass that finds the next step negligible and supplies R.
+// (AVX2 where the CPU has it, else SSE2; the same bits, see "the Gauss-Newton pass" below)
+// that also keeps the extremes of r and Σ d² — the residual summary needs no pass of its own:
+// Σ e² = Σ d² − n d̄² and the contacts are the first indices of the extremes. Typically 2
+// iterations: the step from the Kåsa centre, then the pass that finds the next step
+// negligible and supplies R.
 #include "vcmm/geometry/least_squares.h"
 
 #include <Eigen/Core>
@@ -74,8 +86,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "internal/isa.h"
 #include "internal/least_squares_on_rays.h"
+#include "internal/near_circle.h"
 #include "internal/prevalidated.h"
+#include "internal/vec.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -86,20 +101,15 @@ namespace {
 
 constexpr const char* kCaller = "least_squares_circle";
 
-/// Every sum the GN step (1) needs, evaluated at one centre. The Σ v vᵀ and Σ d² sums are
-/// formed in full passes only.
+/// Every sum the GN step (1) needs, evaluated at one centre, and what the residual summary
+/// needs of the same pass. The Σ v vᵀ sums are formed in full passes only.
 struct PassSums {
   double sum_d = 0.0, sum_dd = 0.0;     // Σ d, Σ d²     (d = r − R₀)
   double sum_vx = 0.0, sum_vy = 0.0;    // Σ v           (v = u − shift)
   double sum_vxd = 0.0, sum_vyd = 0.0;  // Σ v d
   double sum_vxx = 0.0, sum_vxy = 0.0, sum_vyy = 0.0;  // Σ v vᵀ
-};
-
-/// Extremes and spread of the residuals about the final circle.
-struct ResidualSummary {
-  double r_max = 0.0, r_min = 0.0;  // extreme distances
-  std::size_t max_index = 0, min_index = 0;  // their first positions
-  double sum_ee = 0.0;              // Σ e², e = r − R
+  double r_max = 0.0, r_min = 0.0;      // extreme distances
+  double s_max = 0.0;  // series passes: max |s| (near_circle.h), the check of their range
 };
 
 // The passes are written on Eigen's SIMD packets (2 doubles with SSE2, 4 with AVX, 1 without
@@ -191,6 +201,193 @@ void check_span(const Extent& e) {
      << " mm (its moments reach the 5th power of the span and would overflow or underflow): "
      << "wrong unit or corrupt data?";
   throw InvalidInput(os.str());
+}
+
+// ---- the Gauss-Newton pass -------------------------------------------------------------------
+// One pass over the local coordinates at a centre: r_i, d_i = r_i − R₀, u_i = (p_i − c)/r_i and
+// the sums of (1), plus the extremes of r and, on a series pass, max |s|. Distances and their
+// reciprocals by the series of internal/near_circle.h (degree D = 3, 4, 6) or, D = 0, by
+// square root and division. Written on GCC vectors of W lanes and compiled twice (internal/
+// isa.h): W = 2 for the baseline (SSE2), W = 4 in a target("avx2") function. Every sum is
+// accumulated in four lanes whatever W — lane j takes the points i ≡ j (mod 4), one AVX2
+// vector or two SSE2 vectors — and the lanes are added as (l₀ + l₂) + (l₁ + l₃), then the last
+// n mod 4 points in order: the same operations in the same order on every element, so both
+// variants give the same bits (no FMA: -ffp-contract=off).
+
+template <int W>
+using Lanes = typename internal::VecOf<W>::type;
+constexpr int kSumLanes = 4;
+
+// max/min as a > b ? a : b (maxpd/minpd on vectors); |v| by clearing the sign bit.
+template <class V>
+[[gnu::always_inline]] inline V lanes_max(const V& a, const V& b) { return a > b ? a : b; }
+template <class V>
+[[gnu::always_inline]] inline V lanes_min(const V& a, const V& b) { return a < b ? a : b; }
+[[gnu::always_inline]] inline double lanes_abs(double v) { return std::fabs(v); }
+template <class V>
+[[gnu::always_inline]] inline V lanes_abs(const V& v) {
+  using M = typename internal::VecOf<sizeof(V) / sizeof(double)>::mask;
+  return V(M(v) & 0x7fffffffffffffffLL);
+}
+[[gnu::always_inline]] inline double lanes_sqrt(double v) { return std::sqrt(v); }
+template <class V>
+[[gnu::always_inline]] inline V lanes_sqrt(const V& v) {
+#if defined(__SSE2__)
+  if constexpr (sizeof(V) == 16) {
+    return __builtin_ia32_sqrtpd(v);
+  } else {
+    const Lanes<2> lo = __builtin_shufflevector(v, v, 0, 1);
+    const Lanes<2> hi = __builtin_shufflevector(v, v, 2, 3);
+    return __builtin_shufflevector(__builtin_ia32_sqrtpd(lo), __builtin_ia32_sqrtpd(hi), 0, 1, 2,
+                                   3);
+  }
+#else
+  V r;
+  for (std::size_t l = 0; l < sizeof(V) / sizeof(double); ++l) r[l] = std::sqrt(v[l]);
+  return r;
+#endif
+}
+
+/// The inputs of a pass (local coordinates, distances written to r).
+struct PassInput {
+  const double* x;
+  const double* y;
+  double* r;
+  std::size_t n;
+  double cx, cy, r0, urx, ury;
+  internal::NearCircle k;  ///< about r0 (series passes)
+};
+
+/// The per-lane accumulators of a pass, for V = Lanes<W> or double (the tail).
+template <class V>
+struct PassLanes {
+  V sd{}, sdd{}, svx{}, svy{}, svxd{}, svyd{}, svxx{}, svxy{}, svyy{};
+  V rmax = V{} - std::numeric_limits<double>::infinity();
+  V rmin = V{} + std::numeric_limits<double>::infinity();
+  V smax{};
+};
+
+/// The pass's work on the W points at i (V = Lanes<W>) or the one (V = double).
+template <bool kFull, int D, class V>
+[[gnu::always_inline]] inline void pass_points(const PassInput& in, std::size_t i,
+                                               PassLanes<V>& a) {
+  const V dx = internal::load<V>(in.x + i) - in.cx, dy = internal::load<V>(in.y + i) - in.cy;
+  const V q = dx * dx + dy * dy;
+  V r, w;
+  if constexpr (D > 0) {
+    const V s = internal::near_circle_s(q, in.k);
+    a.smax = lanes_max(a.smax, lanes_abs(s));
+    r = in.k.r0 + internal::near_circle_offset<D>(s, in.k);
+    w = internal::near_circle_inverse<D>(s, in.k);
+  } else {
+    r = lanes_sqrt(q);
+    w = 1.0 / r;
+  }
+  internal::store(in.r + i, r);
+  const V d = r - in.r0;
+  V vx = dx * w, vy = dy * w;
+  a.rmax = lanes_max(a.rmax, r);
+  a.rmin = lanes_min(a.rmin, r);
+  if constexpr (kFull) {
+    vx = vx - in.urx;
+    vy = vy - in.ury;
+    a.svxx += vx * vx;
+    a.svxy += vx * vy;
+    a.svyy += vy * vy;
+  }
+  a.sdd += d * d;
+  a.sd += d;
+  a.svx += vx;
+  a.svy += vy;
+  a.svxd += vx * d;
+  a.svyd += vy * d;
+}
+
+template <int W, bool kFull, int D>
+[[gnu::always_inline]] inline PassSums gn_pass_body(const PassInput& input) {
+  // A local copy: the stores to in.r cannot alias it, so its constants stay in registers.
+  const PassInput in = input;
+  using V = Lanes<W>;
+  constexpr int kPackets = kSumLanes / W;
+  PassLanes<V> a[kPackets];
+  std::size_t i = 0;
+  for (; i + kSumLanes <= in.n; i += kSumLanes)
+    for (int p = 0; p < kPackets; ++p) pass_points<kFull, D>(in, i + p * W, a[p]);
+  // The four lanes in point order, added as (l₀ + l₂) + (l₁ + l₃).
+  const auto sum = [&](V PassLanes<V>::*field) {
+    double l[kSumLanes];
+    for (int p = 0; p < kPackets; ++p)
+      for (int j = 0; j < W; ++j) l[p * W + j] = (a[p].*field)[j];
+    return (l[0] + l[2]) + (l[1] + l[3]);
+  };
+  PassSums out;
+  out.sum_d = sum(&PassLanes<V>::sd);
+  out.sum_dd = sum(&PassLanes<V>::sdd);
+  out.sum_vx = sum(&PassLanes<V>::svx);
+  out.sum_vy = sum(&PassLanes<V>::svy);
+  out.sum_vxd = sum(&PassLanes<V>::svxd);
+  out.sum_vyd = sum(&PassLanes<V>::svyd);
+  if constexpr (kFull) {
+    out.sum_vxx = sum(&PassLanes<V>::svxx);
+    out.sum_vxy = sum(&PassLanes<V>::svxy);
+    out.sum_vyy = sum(&PassLanes<V>::svyy);
+  }
+  out.r_max = -std::numeric_limits<double>::infinity();
+  out.r_min = std::numeric_limits<double>::infinity();
+  for (int p = 0; p < kPackets; ++p)
+    for (int j = 0; j < W; ++j) {
+      out.r_max = std::max(out.r_max, a[p].rmax[j]);
+      out.r_min = std::min(out.r_min, a[p].rmin[j]);
+      out.s_max = std::max(out.s_max, a[p].smax[j]);
+    }
+  // The last n mod 4 points, one at a time, added in order.
+  for (; i < in.n; ++i) {
+    PassLanes<double> t;
+    pass_points<kFull, D>(in, i, t);
+    out.sum_d += t.sd;
+    out.sum_dd += t.sdd;
+    out.sum_vx += t.svx;
+    out.sum_vy += t.svy;
+    out.sum_vxd += t.svxd;
+    out.sum_vyd += t.svyd;
+    out.sum_vxx += t.svxx;
+    out.sum_vxy += t.svxy;
+    out.sum_vyy += t.svyy;
+    out.r_max = std::max(out.r_max, t.rmax);
+    out.r_min = std::min(out.r_min, t.rmin);
+    out.s_max = std::max(out.s_max, t.smax);
+  }
+  return out;
+}
+
+template <bool kFull, int D>
+PassSums gn_pass_baseline(const PassInput& in) {
+  return gn_pass_body<2, kFull, D>(in);
+}
+#if VCMM_GEOMETRY_X86
+template <bool kFull, int D>
+__attribute__((target("avx2"))) PassSums gn_pass_avx2(const PassInput& in) {
+  return gn_pass_body<4, kFull, D>(in);
+}
+#endif
+
+template <bool kFull, int D>
+PassSums gn_pass_variant(const PassInput& in) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx2()) return gn_pass_avx2<kFull, D>(in);
+#endif
+  return gn_pass_baseline<kFull, D>(in);
+}
+
+/// The pass with the series of the given degree (3, 4, 6), or square root and division (0).
+template <bool kFull>
+PassSums gn_pass(const PassInput& in, int degree) {
+  switch (degree) {
+    case 3: return gn_pass_variant<kFull, 3>(in);
+    case 4: return gn_pass_variant<kFull, 4>(in);
+    case 6: return gn_pass_variant<kFull, 6>(in);
+    default: return gn_pass_variant<kFull, 0>(in);
+  }
 }
 
 /// Per-thread scratch arrays, kept between calls: reallocating ~1 MB per call at n = 36 000
@@ -323,131 +520,17 @@ class Fitter {
 
 
  public:
-  /// One pass at centre (cx, cy): distances stored in r_, sums about the reference radius
-  /// r0. A full pass (kFull) uses v = u − (urx, ury) and forms Σ v vᵀ and Σ d²; a light pass
-  /// uses v = u and skips them (b = Σ v d − d̄ Σ v is the same for any shift of v).
-  template <bool kFull>
-  PassSums evaluate(double cx, double cy, double r0, double urx, double ury) {
-    const Packet pcx = simd::pset1<Packet>(cx), pcy = simd::pset1<Packet>(cy);
-    const Packet pr0 = simd::pset1<Packet>(r0), one = simd::pset1<Packet>(1.0);
-    const Packet pux = simd::pset1<Packet>(urx), puy = simd::pset1<Packet>(ury);
-    Packet sd = simd::pset1<Packet>(0.0), sdd = sd, svx = sd, svy = sd, svxd = sd, svyd = sd,
-           svxx = sd, svxy = sd, svyy = sd;
-    for (Eigen::Index i = 0; i < packed_; i += kLanes) {
-      const Packet dx = simd::psub(simd::ploadu<Packet>(x_ + i), pcx);
-      const Packet dy = simd::psub(simd::ploadu<Packet>(y_ + i), pcy);
-      const Packet r = simd::psqrt(simd::padd(simd::pmul(dx, dx), simd::pmul(dy, dy)));
-      simd::pstoreu(r_ + i, r);
-      const Packet w = simd::pdiv(one, r);
-      const Packet d = simd::psub(r, pr0);
-      Packet vx = simd::pmul(dx, w), vy = simd::pmul(dy, w);
-      if constexpr (kFull) {
-        vx = simd::psub(vx, pux);
-        vy = simd::psub(vy, puy);
-        sdd = simd::pmadd(d, d, sdd);
-        svxx = simd::pmadd(vx, vx, svxx);
-        svxy = simd::pmadd(vx, vy, svxy);
-        svyy = simd::pmadd(vy, vy, svyy);
-      }
-      sd = simd::padd(sd, d);
-      svx = simd::padd(svx, vx);
-      svy = simd::padd(svy, vy);
-      svxd = simd::pmadd(vx, d, svxd);
-      svyd = simd::pmadd(vy, d, svyd);
-    }
-    PassSums s;
-    s.sum_d = simd::predux(sd);
-    s.sum_dd = simd::predux(sdd);
-    s.sum_vx = simd::predux(svx);
-    s.sum_vy = simd::predux(svy);
-    s.sum_vxd = simd::predux(svxd);
-    s.sum_vyd = simd::predux(svyd);
-    s.sum_vxx = simd::predux(svxx);
-    s.sum_vxy = simd::predux(svxy);
-    s.sum_vyy = simd::predux(svyy);
-    for (Eigen::Index i = packed_; i < n_; ++i) {
-      const double dx = x_[i] - cx, dy = y_[i] - cy;
-      const double r = std::sqrt(dx * dx + dy * dy);
-      r_[i] = r;
-      const double d = r - r0;
-      double vx = dx / r, vy = dy / r;
-      if constexpr (kFull) {
-        vx -= urx;
-        vy -= ury;
-        s.sum_dd += d * d;
-        s.sum_vxx += vx * vx;
-        s.sum_vxy += vx * vy;
-        s.sum_vyy += vy * vy;
-      }
-      s.sum_d += d;
-      s.sum_vx += vx;
-      s.sum_vy += vy;
-      s.sum_vxd += vx * d;
-      s.sum_vyd += vy * d;
-    }
-    return s;
+  /// One Gauss-Newton pass at centre (cx, cy) (gn_pass): distances stored in r_, sums about
+  /// the reference radius r0, by the series of near_circle.h where they are valid.
+  PassSums evaluate(bool full, double cx, double cy, double r0, double urx, double ury,
+                    int degree) {
+    const PassInput in{x_, y_, r_, static_cast<std::size_t>(n_), cx, cy, r0, urx, ury,
+                       degree > 0 ? internal::near_circle_about(r0) : internal::NearCircle{}};
+    return full ? gn_pass<true>(in, degree) : gn_pass<false>(in, degree);
   }
 
-  PassSums evaluate(bool full, double cx, double cy, double r0, double urx, double ury) {
-    return full ? evaluate<true>(cx, cy, r0, urx, ury) : evaluate<false>(cx, cy, r0, urx, ury);
-  }
-
-  /// Extremes of the stored distances and Σ e² with e = (r − r0) − mean_d (R = r0 + mean_d).
-  ResidualSummary summarize(double r0, double mean_d) const {
-    const Packet pr0 = simd::pset1<Packet>(r0), pmd = simd::pset1<Packet>(mean_d);
-    Packet rmax = simd::pset1<Packet>(-std::numeric_limits<double>::infinity());
-    Packet rmin = simd::pset1<Packet>(std::numeric_limits<double>::infinity());
-    Packet see = simd::pset1<Packet>(0.0);
-    // Per lane, the first index of its extremes (strict comparisons keep the first).
-    Packet index = simd::plset<Packet>(0.0), imax = index, imin = index;
-    const Packet lanes = simd::pset1<Packet>(static_cast<double>(kLanes));
-    for (Eigen::Index i = 0; i < packed_; i += kLanes) {
-      const Packet r = simd::ploadu<Packet>(r_ + i);
-      const Packet e = simd::psub(simd::psub(r, pr0), pmd);
-      const Packet above = simd::pcmp_lt(rmax, r), below = simd::pcmp_lt(r, rmin);
-      rmax = simd::pselect(above, r, rmax);
-      imax = simd::pselect(above, index, imax);
-      rmin = simd::pselect(below, r, rmin);
-      imin = simd::pselect(below, index, imin);
-      see = simd::pmadd(e, e, see);
-      index = simd::padd(index, lanes);
-    }
-    ResidualSummary out;
-    out.r_max = -std::numeric_limits<double>::infinity();
-    out.r_min = std::numeric_limits<double>::infinity();
-    alignas(64) double vmax[kLanes], vmin[kLanes], jmax[kLanes], jmin[kLanes];
-    simd::pstoreu(vmax, rmax);
-    simd::pstoreu(vmin, rmin);
-    simd::pstoreu(jmax, imax);
-    simd::pstoreu(jmin, imin);
-    double at_max = 0.0, at_min = 0.0;
-    for (Eigen::Index k = 0; k < (packed_ > 0 ? kLanes : 0); ++k) {  // lowest index on ties
-      if (vmax[k] > out.r_max || (vmax[k] == out.r_max && jmax[k] < at_max)) {
-        out.r_max = vmax[k];
-        at_max = jmax[k];
-      }
-      if (vmin[k] < out.r_min || (vmin[k] == out.r_min && jmin[k] < at_min)) {
-        out.r_min = vmin[k];
-        at_min = jmin[k];
-      }
-    }
-    out.max_index = static_cast<std::size_t>(at_max);
-    out.min_index = static_cast<std::size_t>(at_min);
-    out.sum_ee = simd::predux(see);
-    for (Eigen::Index i = packed_; i < n_; ++i) {
-      const double e = (r_[i] - r0) - mean_d;
-      if (r_[i] > out.r_max) {
-        out.r_max = r_[i];
-        out.max_index = static_cast<std::size_t>(i);
-      }
-      if (r_[i] < out.r_min) {
-        out.r_min = r_[i];
-        out.min_index = static_cast<std::size_t>(i);
-      }
-      out.sum_ee += e * e;
-    }
-    return out;
-  }
+  /// First index of a stored distance equal to r (one of its values).
+  std::size_t first_distance_index(double r) const { return first_index(r_, n_, r); }
 
   Eigen::Index size() const { return n_; }
   Point2 shift() const { return shift_; }
@@ -504,9 +587,31 @@ LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> po
   double mxx = 0.0, mxy = 0.0, myy = 0.0;  // M of (1), from the last full pass
   int iterations = 0;
   double mean_d = 0.0;
-  for (;;) {
-    const PassSums s = fit.evaluate(full, cx, cy, r0, urx, ury);
+  // Distances by the series of near_circle.h where |s| allows (degree 3, 4 or 6; 0: square
+  // root and division). The first pass, at the Kåsa centre, assumes the deviations of a
+  // roundness profile (kFirstDegree); each later pass takes the smallest degree whose range
+  // covers every point as bounded from the previous pass. A pass whose points leave its range
+  // (its max |s| says so) is redone at once with the degree that max |s| needs: |s| does not
+  // depend on the degree, so never twice. The redo is not an iteration.
+  constexpr int kFirstDegree = 4;
+  int degree = internal::near_circle_radius_ok(r0) ? kFirstDegree : 0;
+  PassSums s;  // the last pass
+  const auto evaluate = [&](bool full_pass, double ux, double uy) {
+    s = fit.evaluate(full_pass, cx, cy, r0, ux, uy, degree);
+    if (degree > 0 && !(s.s_max <= internal::near_circle_s_max(degree))) {
+      degree = internal::near_circle_degree(s.s_max);
+      s = fit.evaluate(full_pass, cx, cy, r0, ux, uy, degree);
+    }
     ++iterations;
+  };
+  // The degree for a pass whose centre has moved by `moved` from the last pass's, about
+  // reference radius r0_next: each distance moves by at most `moved`.
+  const auto predict = [&](double moved, double r0_next) {
+    degree = internal::near_circle_degree_for(
+        r0_next, std::max(s.r_max - r0_next, r0_next - s.r_min) + moved);
+  };
+  for (;;) {
+    evaluate(full, urx, ury);
     mean_d = s.sum_d / nd;
     const double radius = r0 + mean_d;
     if (!std::isfinite(radius)) throw_not_circular("produced a non-finite radius", radius,
@@ -526,14 +631,17 @@ LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> po
         if (lambda < 0x1.0p-40 || iterations >= kMaxIterations) {
           // No decrease along the GN direction: the previous full iterate is stationary to
           // within rounding. Re-evaluate there so that R and the residuals refer to it.
+          predict(std::hypot(prev_cx - cx, prev_cy - cy), r0);
           cx = prev_cx;
           cy = prev_cy;
-          mean_d = fit.evaluate<false>(cx, cy, r0, 0.0, 0.0).sum_d / nd;
-          ++iterations;
+          evaluate(false, 0.0, 0.0);
+          mean_d = s.sum_d / nd;
           break;
         }
-        cx = prev_cx + lambda * prev_dx;
-        cy = prev_cy + lambda * prev_dy;
+        const double next_x = prev_cx + lambda * prev_dx, next_y = prev_cy + lambda * prev_dy;
+        predict(std::hypot(next_x - cx, next_y - cy), r0);
+        cx = next_x;
+        cy = next_y;
         continue;
       }
       prev_f = f;
@@ -573,6 +681,7 @@ LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> po
     // New reference radius: r̄ at the new centre to first order (r_i(c+δ) ≈ r_i − u_i·δ),
     // so that the next d_i stay small.
     r0 = radius - (ubx * dx + uby * dy);
+    predict(step, r0);
     cx += dx;
     cy += dy;
   }
@@ -582,16 +691,15 @@ LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> po
   out.center = {shift.x + cx, shift.y + cy};
   out.radius = r0 + mean_d;
   out.iterations = iterations;
-  // Residuals about (centre, R): e_i = (r_i − R₀) − d̄. Contacts: the first positions of the
-  // extreme distances (lowest index wins ties).
-  const ResidualSummary sum = fit.summarize(r0, mean_d);
-  out.contacts = {sum.max_index, sum.min_index};
-  const double emax = (sum.r_max - r0) - mean_d;
-  const double emin = (sum.r_min - r0) - mean_d;
+  // Residuals about (centre, R), from the last pass: e_i = (r_i − R₀) − d̄, Σ e² = Σ d² − n d̄².
+  // Contacts: the first positions of the extreme distances (lowest index wins ties).
+  out.contacts = {fit.first_distance_index(s.r_max), fit.first_distance_index(s.r_min)};
+  const double emax = (s.r_max - r0) - mean_d;
+  const double emin = (s.r_min - r0) - mean_d;
   out.ron.ront = emax - emin;
   out.ron.ronp = std::max(0.0, emax);
   out.ron.ronv = std::max(0.0, -emin);
-  out.ron.ronq = std::sqrt(sum.sum_ee / nd);
+  out.ron.ronq = std::sqrt(std::max(0.0, s.sum_dd - nd * mean_d * mean_d) / nd);
   return out;
 }
 

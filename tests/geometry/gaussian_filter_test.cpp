@@ -469,6 +469,43 @@ TEST(GaussianFilteredProfile, ReportsTheLeastSquaresCentreAndRadius) {
   EXPECT_NEAR(f.mean_radius, 85.5, 1e-5);
 }
 
+// The filter's first pass takes distances by a series whose degree it picks from the RONt of
+// the LS circle it is given (internal/near_circle.h), redoing the pass with a wider series or
+// with square roots when a point falls outside. An LS circle whose RONt says nothing (0: try
+// the narrowest series first; NaN: unknown; huge: square roots at once) filters alike: the
+// same path, the same points to within rounding — every degree is within an ulp of √.
+TEST(GaussianFilteredProfile, AnyRontOfTheGivenLsCircleFiltersAlike) {
+  for (const double form : {1e-4, 2e-3, 2e-2}) {  // |s| ~ 2e-5, 4e-4, 4e-3 on R = 10
+    RingSpec spec;
+    spec.center = {-40.0, 70.0};
+    spec.radius = 10.0;
+    spec.n = 1800;
+    spec.harmonics = {Harmonic{2, form, 0.3}, Harmonic{3, 0.6 * form, 1.1},
+                      Harmonic{15, 0.1 * form, 2.9}};
+    spec.noise_sigma = 0.02 * form;
+    const auto pts = ring_profile(spec);
+    const auto ls = vcmm::geometry::least_squares_circle(pts);
+    FilteredProfile base;
+    vcmm::geometry::LeastSquaresCircle base_ls;
+    gaussian_filtered_profile(pts, 50.0, ls, base, &base_ls);
+    for (const double ront : {0.0, std::numeric_limits<double>::quiet_NaN(), 1e3}) {
+      SCOPED_TRACE(::testing::Message() << "form " << form << ", RONt given " << ront);
+      auto hint = ls;
+      hint.ron.ront = ront;
+      FilteredProfile f;
+      vcmm::geometry::LeastSquaresCircle f_ls;
+      gaussian_filtered_profile(pts, 50.0, hint, f, &f_ls);
+      EXPECT_EQ(f.path, base.path);
+      double worst = 0.0;
+      for (std::size_t i = 0; i < pts.size(); ++i)
+        worst = std::max({worst, std::fabs(f.points[i].x - base.points[i].x),
+                          std::fabs(f.points[i].y - base.points[i].y)});
+      EXPECT_LE(worst, 1e-13);  // a few ulps of the coordinates (~80 mm: ulp 1.4e-14)
+      EXPECT_NEAR(f_ls.ron.ront, base_ls.ron.ront, 1e-13);
+    }
+  }
+}
+
 // ---- bad input ---------------------------------------------------------------------------------
 
 void expect_invalid_profile(const std::vector<Point2>& pts, double fc, const std::string& fragment) {

@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <numeric>
 #include <string>
 #include <vector>
 
+#include "../../geometry/src/internal/isa.h"
 #include "support/test_profiles.h"
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/roundness_parameters.h"
@@ -298,6 +300,11 @@ INSTANTIATE_TEST_SUITE_P(
         Regime{"Tiny", 1e-3, {0.5, 0.25}, 200, 0, 1e-7, 1e-8},
         Regime{"Huge", 1e4, {-3e3, 2e3}, 720, 0, 1e-2, 1e-3},
         Regime{"RoughForm", 20.0, {1, 1}, 720, 0, 0.2, 0.01},
+        // Deviations near the top of the distance series' range (|s| ≲ 2⁻⁹, near_circle.h),
+        // and just beyond it: the first pass redone with degree 6, or with square roots.
+        Regime{"SeriesEdge", 10.0, {-40, 70}, 1001, 0, 2e-3, 1e-4},
+        Regime{"BeyondSeries", 10.0, {-40, 70}, 1001, 0, 6e-3, 1e-4},
+        Regime{"Ring3601", 85.5, {0, 0}, 3601, 0, 1e-4, 5e-5},
         Regime{"Half", 30.0, {100, 100}, 500, kPi, 1e-3, 1e-4},
         Regime{"Quarter", 30.0, {-900, 0}, 400, kPi / 2, 1e-3, 1e-4},
         Regime{"Arc30deg", 50.0, {0, 0}, 300, kPi / 6, 1e-4, 1e-5},
@@ -306,6 +313,26 @@ INSTANTIATE_TEST_SUITE_P(
         Regime{"Sparse3", 12.0, {3, 4}, 3, 0, 1e-3, 0},
         Regime{"Sparse4Arc", 12.0, {0, 0}, 4, kPi / 2, 1e-3, 0}),
     regime_name);
+
+// The Gauss-Newton passes run as AVX2 or as baseline (SSE2) code (internal/isa.h), with their
+// sums in the same four lanes: the same bits either way.
+TEST_P(LeastSquaresRegimes, InstructionSetVariantsGiveTheSameBits) {
+  const Regime g = GetParam();
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const auto pts = regime_profile(g, seed);
+    const LeastSquaresCircle fit = least_squares_circle(pts);
+    LeastSquaresCircle base;
+    {
+      vcmm::geometry::internal::ForceBaselineIsa baseline;
+      base = least_squares_circle(pts);
+    }
+    EXPECT_EQ(std::memcmp(&fit.center, &base.center, sizeof fit.center), 0) << seed;
+    EXPECT_EQ(std::memcmp(&fit.radius, &base.radius, sizeof fit.radius), 0) << seed;
+    EXPECT_EQ(std::memcmp(&fit.ron, &base.ron, sizeof fit.ron), 0) << seed;
+    EXPECT_EQ(fit.contacts, base.contacts) << seed;
+    EXPECT_EQ(fit.iterations, base.iterations) << seed;
+  }
+}
 
 TEST(LeastSquaresCircle, DuplicatesCountWithTheirMultiplicity) {
   RingSpec spec;

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "internal/isa.h"
+#include "internal/vec.h"
 
 namespace vcmm::geometry::internal {
 
@@ -186,46 +187,7 @@ struct Butterfly<8> {
 
 
 
-// ---- vectors of W doubles -------------------------------------------------------------------
-// GCC/Clang vector extensions: element-wise IEEE operations, so each lane computes exactly what
-// the scalar code computes. W = 2 in the baseline variant (SSE2), 4 in the AVX2 variant.
-// The 4-wide helpers are always inlined into the AVX2 variant: no vector crosses a call
-// boundary, so GCC's note that such a return "changes the ABI" without AVX does not apply.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-template <int W>
-struct VecOf;
-template <>
-struct VecOf<2> {
-  using type = double __attribute__((vector_size(16)));
-};
-template <>
-struct VecOf<4> {
-  using type = double __attribute__((vector_size(32)));
-};
-
-
-template <class T>
-[[gnu::always_inline]] inline T load(const double* p) {
-  if constexpr (std::is_same_v<T, double>) {
-    return *p;
-  } else {
-    T v;
-    __builtin_memcpy(&v, p, sizeof(T));
-    return v;
-  }
-}
-// v by reference: a 32-byte vector passed by value draws GCC's -Wpsabi note in the baseline
-// (non-AVX) compilation of this template, although the call is always inlined.
-template <class T>
-[[gnu::always_inline]] inline void store(double* p, const T& v) {
-  if constexpr (std::is_same_v<T, double>) {
-    *p = v;
-  } else {
-    __builtin_memcpy(p, &v, sizeof(T));
-  }
-}
+// ---- vectors of W doubles: internal/vec.h ----------------------------------------------------
 
 /// Stores the W × W block rows: out[l·stride + u] = a[u][l] for u, l < W (a transpose).
 template <int W, class V>

@@ -1,12 +1,13 @@
 // geometry/src/internal/isa.h — the instruction-set choice of the geometry module's vectorised
 // kernels (the FFT passes, internal/fft.cpp; the Gaussian filter's first pass,
-// gaussian_filter.cpp). Each kernel is compiled from one source twice: for the package's
-// baseline ISA and, on x86-64 with GCC or Clang, with __attribute__((target("avx2"))). Both
-// run the same operations in the same order on every element (no reductions; no FMA: AVX2
-// does not enable it and those files are compiled with -ffp-contract=off), so results are
-// bit-identical whichever runs — MPI ranks on different machines agree. The AVX2 variant runs
-// where the CPU has it, unless a ForceBaselineIsa is alive on the calling thread (tests compare
-// the variants end to end). Not part of the public API.
+// gaussian_filter.cpp; the least-squares fit's Gauss-Newton passes, least_squares.cpp). Each
+// kernel is compiled from one source twice: for the package's baseline ISA and, on x86-64 with
+// GCC or Clang, with __attribute__((target("avx2"))). Both run the same operations in the same
+// order on every element (reductions only over a fixed split into four lanes, one AVX2 or two
+// SSE2 vectors; no FMA: AVX2 does not enable it and the project is compiled with
+// -ffp-contract=off), so results are bit-identical whichever runs — MPI ranks on different
+// machines agree. The AVX2 variant runs where the CPU has it, unless a ForceBaselineIsa is
+// alive on the calling thread (tests compare the variants end to end). Not part of the API.
 #pragma once
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))

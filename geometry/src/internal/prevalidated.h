@@ -5,6 +5,7 @@
 // call. Not part of the public API.
 #pragma once
 
+#include <limits>
 #include <span>
 
 #include "vcmm/geometry/gaussian_filter.h"
@@ -32,9 +33,13 @@ MaximumInscribedCircle fit_maximum_inscribed_circle(std::span<const Point2> poin
 MinimumCircumscribedCircle fit_minimum_circumscribed_circle(std::span<const Point2> points);
 
 /// roundness_parameters(points, center, reference_radius) without its checks.
-/// Precondition (not checked): ≥ 1 finite point, finite centre and radius.
-RoundnessParameters roundness_parameters_of_valid(std::span<const Point2> points,
-                                                  Point2 center, double reference_radius);
+/// deviation_bound: the largest |r_i − R| expected (e.g. the circle's RONt), which picks the
+/// degree of the near-circle series (roundness_parameters.cpp; a wrong or unknown (NaN) bound
+/// costs time, never accuracy). Precondition (not checked): ≥ 1 finite point, finite centre
+/// and radius.
+RoundnessParameters roundness_parameters_of_valid(
+    std::span<const Point2> points, Point2 center, double reference_radius,
+    double deviation_bound = std::numeric_limits<double>::quiet_NaN());
 
 /// gaussian_filtered_profile(points, cutoff_upr, least_squares, out, filtered_least_squares)
 /// without validate_profile, and false instead of its "profile is not closed" InvalidInput

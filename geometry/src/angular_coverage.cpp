@@ -24,6 +24,7 @@
 // the tests, the general path runs.
 #include "vcmm/geometry/angular_coverage.h"
 #include "internal/angular_walk.h"
+#include "internal/vec.h"
 
 #include <Eigen/Core>
 
@@ -135,7 +136,7 @@ std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
   // Four steps a test on the sign bits (the first block holding it), then the step itself.
   std::size_t i = 0;
   {
-    using M4 = std::int64_t __attribute__((vector_size(32)));
+    using M4 = internal::VecOf<4>::mask;  // internal/vec.h
     for (; i + 4 <= n; i += 4) {
       M4 a, b;  // the bits of y_i … y_{i+3} and y_{i+1} … y_{i+4}
       std::memcpy(&a, y + i, sizeof a);

@@ -33,6 +33,7 @@
 #include "internal/isa.h"
 #include "internal/near_circle.h"
 #include "internal/prevalidated.h"
+#include "internal/vec.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -56,8 +57,8 @@ double distance(double dx, double dy) {
 struct NearSums {
   double r_max, r_min, sum_dd;
 };
-using V4 = double __attribute__((vector_size(32)));
-using M4 = long long __attribute__((vector_size(32)));
+using V4 = internal::VecOf<4>::type;  // internal/vec.h
+using M4 = internal::VecOf<4>::mask;
 
 template <int kDegree>
 [[gnu::always_inline]] inline bool near_sums_body(const Point2* p, std::size_t n, Point2 c,

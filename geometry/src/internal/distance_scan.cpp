@@ -16,12 +16,13 @@
 #include <limits>
 
 #include "internal/isa.h"
+#include "internal/vec.h"
 
 namespace vcmm::geometry::internal {
 namespace {
 
-using V4 = double __attribute__((vector_size(32)));
-using M4 = std::int64_t __attribute__((vector_size(32)));
+using V4 = VecOf<4>::type;  // internal/vec.h
+using M4 = VecOf<4>::mask;
 
 /// Whether any lane of a comparison mask is set: the lanes OR-ed by two shuffles, one
 /// extraction (three extractions cost more in the loop).

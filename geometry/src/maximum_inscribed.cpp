@@ -42,7 +42,7 @@
 //      (internal/extremal_circle.cpp). Points strictly inside join the candidates (the 32
 //      deepest per round, ranked by the finest value available) and step 2 repeats from the
 //      circle's centre. Typically 1-2 rounds. Before the pass, a local refinement
-//      (internal::local_extreme, at most 8 times, not for a walk step's triple): each
+//      (internal::local_extreme, at most twice, not for a walk step's triple): each
 //      contact's nearest neighbour along the input order within n/64 indices and down the
 //      slope beyond (about the circle's centre) joins the candidates when it is not one,
 //      and step 2 repeats — on filtered scans that is where the pass's violators were.
@@ -663,7 +663,7 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
   // round profiles need (2-4); beyond it the fallback is cheaper than more rounds.
   int violator_rounds = 0;
   int refinements = 0;  // local refinements (no O(n) pass)
-  constexpr int kMaxRefinements = 8;
+  constexpr int kMaxRefinements = 2;
   std::optional<std::array<std::size_t, 3>> walked;  // the next triple, from a walk step
   std::array<std::size_t, 3> last{kNone, kNone, kNone};  // the program's previous triple
   for (int round = 0; round < 24; ++round) {
@@ -700,7 +700,7 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
     // Local refinement (internal::local_extreme): a contact of the program's triple with a
     // nearer neighbour along the profile about this centre is a few indices off a contact
     // of the full set; add those neighbours and re-solve before paying for the O(n) pass
-    // (a few times at most, and not for a walk step's triple).
+    // (twice at most, and not for a walk step's triple).
     if (!from_walk && refinements < kMaxRefinements && circle.filter_usable) {
       bool grew = false;
       for (const std::size_t k : triple) {

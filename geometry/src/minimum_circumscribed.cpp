@@ -25,7 +25,7 @@
 //      of internal/extremal_circle.cpp (error bound ~1e-15 relative); only points in the
 //      ambiguous band go to the exact predicate. Points strictly outside join S (the
 //      farthest per sector when there are more than 64); repeat. Before that pass, a
-//      local refinement (internal::local_extreme, at most 8 times): each support's
+//      local refinement (internal::local_extreme, once): each support's
 //      farthest neighbour along the input order within n/64 indices and up the slope
 //      beyond (about the round's centre) joins S when it is not a support — on filtered
 //      scans the contacts of the full set sit there, so one O(n) pass usually suffices.
@@ -328,7 +328,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
   double nearest_d2 = 0.0;
   Point2 order_center = c0;
   std::size_t refinements = 0;  // local refinements (no O(n) pass)
-  constexpr std::size_t kMaxRefinements = 8;
+  constexpr std::size_t kMaxRefinements = 1;
   while (true) {
     order_farthest_first(points, order_center, set);
     // After the first round the last round's supports go first: their circle is nearly the
@@ -344,7 +344,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
     circle = exact_circle_of(points, support);
     // Local refinement (internal::local_extreme): a support with a farther neighbour along
     // the profile about this circle's centre is a few indices off a contact of the full
-    // set; add those neighbours and re-solve before paying for the O(n) pass (a few times
+    // set; add those neighbours and re-solve before paying for the O(n) pass (once
     // at most; each adds a point, so S still grows).
     if (refinements < kMaxRefinements && circle.filter_usable) {
       bool grew = false;

@@ -9,6 +9,7 @@
 // u = 2⁻⁵³ is the unit roundoff.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <limits>
@@ -116,18 +117,32 @@ inline double scaled_distance2(Point2 p, Point2 c, double scale) {
 template <bool kFarthest>
 std::size_t local_extreme(std::span<const Point2> points, std::size_t i, Point2 c,
                           double scale, std::size_t window, std::size_t limit) {
+  if (points.size() < 2) return i;
   const std::size_t n = points.size();
   const auto better = [](double a, double b) { return kFarthest ? a > b : a < b; };
   const double d0 = scaled_distance2(points[i], c, scale);
   std::size_t best = i;
   double best_d = d0;
+  window = std::min(window, limit);
   for (const bool forward : {true, false}) {
+    const auto next = [&](std::size_t j) {
+      return forward ? (j + 1 == n ? 0 : j + 1) : (j == 0 ? n - 1 : j - 1);
+    };
+    // The window: every neighbour, branch-free selects (noisy data: unpredictable).
     std::size_t j = i;
     double dj = d0;
-    for (std::size_t step = 1; step <= limit; ++step) {
-      const std::size_t k = forward ? (j + 1 == n ? 0 : j + 1) : (j == 0 ? n - 1 : j - 1);
+    for (std::size_t step = 1; step <= window; ++step) {
+      j = next(j);
+      dj = scaled_distance2(points[j], c, scale);
+      const bool b = better(dj, best_d);
+      best = b ? j : best;
+      best_d = b ? dj : best_d;
+    }
+    // Beyond it: on while the distance keeps moving the same way.
+    for (std::size_t step = window + 1; step <= limit; ++step) {
+      const std::size_t k = next(j);
       const double dk = scaled_distance2(points[k], c, scale);
-      if (step > window && !better(dk, dj)) break;
+      if (!better(dk, dj)) break;
       j = k;
       dj = dk;
       if (better(dj, best_d)) {

@@ -41,7 +41,11 @@
 //      (internal/precise_distance.h), then the circle's own integers for exact ties
 //      (internal/extremal_circle.cpp). Points strictly inside join the candidates (the 32
 //      deepest per round, ranked by the finest value available) and step 2 repeats from the
-//      circle's centre. Typically 1-2 rounds.
+//      circle's centre. Typically 1-2 rounds. Before the pass, a local refinement
+//      (internal::local_extreme, at most twice, not for a walk step's triple): each
+//      contact's nearest neighbour along the input order within n/64 indices and down the
+//      slope beyond (about the circle's centre) joins the candidates when it is not one,
+//      and step 2 repeats — on filtered scans that is where the pass's violators were.
 //   4. Contacts: the three, and every point found exactly on the circle (ties: co-circular
 //      data, symmetric polygons). Among them the reported triple is the acute one of
 //      largest β (below): the one nearest in angle to 0°, 120°, 240° from the lowest-index
@@ -658,10 +662,13 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
   // Rounds: linearisations, violator rounds and walk steps together. 24 is far above what
   // round profiles need (2-4); beyond it the fallback is cheaper than more rounds.
   int violator_rounds = 0;
+  int refinements = 0;  // local refinements (no O(n) pass)
+  constexpr int kMaxRefinements = 2;
   std::optional<std::array<std::size_t, 3>> walked;  // the next triple, from a walk step
   std::array<std::size_t, 3> last{kNone, kNone, kNone};  // the program's previous triple
   for (int round = 0; round < 24; ++round) {
     std::array<std::size_t, 3> triple{};
+    const bool from_walk = walked.has_value();
     if (walked) {
       triple = *walked;
       walked.reset();
@@ -690,6 +697,27 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
     if (CGAL::orientation(to_epick(pa), to_epick(pb), to_epick(pc)) == CGAL::COLLINEAR)
       return std::nullopt;
     const ExactCircle circle = internal::exact_circumcircle(pa, pb, pc);
+    // Local refinement (internal::local_extreme): a contact of the program's triple with a
+    // nearer neighbour along the profile about this centre is a few indices off a contact
+    // of the full set; add those neighbours and re-solve before paying for the O(n) pass
+    // (twice at most, and not for a walk step's triple).
+    if (!from_walk && refinements < kMaxRefinements && circle.filter_usable) {
+      bool grew = false;
+      for (const std::size_t k : triple) {
+        const std::size_t j =
+            internal::local_extreme<false>(points, k, circle.center_d, circle.scale, n / 64, n / 8);
+        if (j != k && !lp.contains(j)) {
+          lp.add(j);
+          ++candidates;
+          grew = true;
+        }
+      }
+      if (grew) {
+        ++refinements;
+        c = circle.center_d;
+        continue;
+      }
+    }
     PassResult pass = classify_all(points, circle);
     if (!pass.violators.empty()) {
       // Add the deepest violators (at most 32 a round keeps the program small; any one of
@@ -725,6 +753,7 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) 
            "rigorous bounds, "
         << pass.exact_calls << " second-stage/exact tests, " << violator_rounds + 1
         << " round(s), " << candidates << " candidates";
+    if (refinements > 0) arg << ", " << refinements << " local refinement(s) of the contacts";
     if (pass.on_circle.size() > 3)
       arg << ", " << pass.on_circle.size() << " points exactly on the circle";
     arg << "); global: r < r* for 0 < |c - c*| < 2r*·beta = "

@@ -24,7 +24,11 @@
 //      once per round, and every input point is classified by the rigorous floating filter
 //      of internal/extremal_circle.cpp (error bound ~1e-15 relative); only points in the
 //      ambiguous band go to the exact predicate. Points strictly outside join S (the
-//      farthest per sector when there are more than 64); repeat.
+//      farthest per sector when there are more than 64); repeat. Before that pass, a
+//      local refinement (internal::local_extreme, once): each support's
+//      farthest neighbour along the input order within n/64 indices and up the slope
+//      beyond (about the round's centre) joins S when it is not a support — on filtered
+//      scans the contacts of the full set sit there, so one O(n) pass usually suffices.
 //      Termination: a violator q of MC(S) gives MC(S ∪ {q}) a larger radius, and S only
 //      grows. Correctness: a circle that is MC(S) and encloses all of P is MC(P), because
 //      any disc containing P contains S and is therefore not smaller than MC(S).
@@ -323,13 +327,14 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
   std::size_t nearest = 0;
   double nearest_d2 = 0.0;
   Point2 order_center = c0;
+  std::size_t refinements = 0;  // local refinements (no O(n) pass)
+  constexpr std::size_t kMaxRefinements = 1;
   while (true) {
-    ++rounds;
     order_farthest_first(points, order_center, set);
     // After the first round the last round's supports go first: their circle is nearly the
     // answer, so most candidates are inside it when met and cost one predicate each.
     list.assign(set.begin(), set.end());
-    if (rounds > 1)
+    if (rounds + refinements > 0)
       std::stable_partition(list.begin(), list.end(), [&](std::size_t i) {
         for (int k = 0; k < support.size; ++k)
           if (support.idx[k] == i) return true;
@@ -337,6 +342,27 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
       });
     support = in_three_loop_order(Welzl(points, list).run(), set);
     circle = exact_circle_of(points, support);
+    // Local refinement (internal::local_extreme): a support with a farther neighbour along
+    // the profile about this circle's centre is a few indices off a contact of the full
+    // set; add those neighbours and re-solve before paying for the O(n) pass (once
+    // at most; each adds a point, so S still grows).
+    if (refinements < kMaxRefinements && circle.filter_usable) {
+      bool grew = false;
+      for (int k = 0; k < support.size; ++k) {
+        const std::size_t j = internal::local_extreme<true>(
+            points, support.idx[k], circle.center_d, circle.scale, n / 64, n / 8);
+        if (j != support.idx[k] && std::find(set.begin(), set.end(), j) == set.end()) {
+          set.push_back(j);
+          grew = true;
+        }
+      }
+      if (grew) {
+        ++refinements;
+        order_center = circle.center_d;
+        continue;
+      }
+    }
+    ++rounds;
 
     // 3. Classify every point; keep the nearest one (for RONt) and those exactly on the
     //    circle (every duplicate of a support lands in the filter's ambiguous band).
@@ -433,6 +459,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
       << " points enclosed (floating filter with rigorous bound, " << exact_calls
       << " exact in-circle predicates) after " << rounds << " round(s) on "
       << set.size() << " candidates";
+  if (refinements > 0) arg << " (" << refinements << " local refinement(s) of the supports)";
   mc.certificate.optimality = Optimality::global;
   mc.certificate.argument = arg.str();
   mc.certificate.region_radius = 0.0;

@@ -341,6 +341,33 @@ TEST(RoundnessHardProfiles, CertificatesVerify) {
   }
 }
 
+// Filtered dense scans (the 171 mm ring of the benchmarks, 50 UPR, as evaluate_roundness
+// fits them): near each smooth extremum the MC and MI circles of the sparse first candidates
+// have their contacts a few indices (or one valley) off those of the full set, which the
+// O(n) pass used to find as violators (MC 2-3 passes, MI 3-4). The local refinement of the
+// supports and contacts finds them along the profile first: one pass each at n = 3600 (MC at
+// 36 000, refined once only, two); the certificates verify.
+TEST(RoundnessSmoothProfiles, CirclesTakeFewerFullPasses) {
+  for (const std::size_t n : {3600u, 36000u}) {
+    SCOPED_TRACE(n);
+    const auto raw = vcmm::test::lobed_noisy_ring(n, 20261122, 5e-5);
+    const std::vector<Point2> p = gaussian_filtered_profile(raw, 50.0).points;
+    const MinimumCircumscribedCircle mc = minimum_circumscribed_circle(p);
+    const MaximumInscribedCircle mi = maximum_inscribed_circle(p);
+    const std::string mc_rounds = n == 3600 ? "after 1 round(s)" : "after 2 round(s)";
+    EXPECT_NE(mc.certificate.argument.find(mc_rounds), std::string::npos)
+        << mc.certificate.argument;
+    EXPECT_NE(mi.certificate.argument.find(" 1 round(s)"), std::string::npos)
+        << mi.certificate.argument;
+    for (const std::string& argument : {mc.certificate.argument, mi.certificate.argument})
+      EXPECT_NE(argument.find("local refinement"), std::string::npos) << argument;
+    const auto vc = verify(p, mc);
+    EXPECT_TRUE(vc.valid) << vc.reason;
+    const auto vi = verify(p, mi);
+    EXPECT_TRUE(vi.valid) << vi.reason;
+  }
+}
+
 std::string profile_name(const ::testing::TestParamInfo<std::size_t>& info) {
   static const char* names[] = {"n16_origin",  "n16_far",  "n360_origin",
                                 "n360_far",    "n3600_origin", "n3600_far"};

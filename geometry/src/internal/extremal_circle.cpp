@@ -81,34 +81,69 @@ mpz_class shifted(const mpz_class& z, int s) {
   return s > 0 ? mpz_class(z << static_cast<unsigned long>(s)) : z;
 }
 
+/// out = x·2^−e for a multiple x of 2^e (as `scaled`, without temporaries).
+void set_scaled(mpz_ptr out, double x, int e) {
+  if (x == 0.0) {
+    mpz_set_ui(out, 0);
+    return;
+  }
+  int k = 0;
+  const double f = std::frexp(x, &k);
+  mpz_set_d(out, std::ldexp(f, 53));
+  mpz_mul_2exp(out, out, static_cast<mp_bitcnt_t>(k - 53 - e));
+}
+
+/// GMP integers reused across calls, per thread (issue 11): the exact circles below are
+/// built a few times per fit (MI ~3, MC ~2 per evaluation), and their temporaries were
+/// ~40 heap allocations a circle. Every use writes a variable before reading it, so no
+/// value leaks from one call to the next; the arithmetic (and so every result) is the same.
+struct CircleScratch {
+  mpz_t ax, ay, ux, uy, vx, vy, t, u2, v2;  // the circle's construction
+  mpz_t q, a, d2;                           // ratio_frexp, ratio_to_double, finish
+  mpz_t gx, gy, gn;                         // exact_power_gap, compare_radius
+  CircleScratch() { mpz_inits(ax, ay, ux, uy, vx, vy, t, u2, v2, q, a, d2, gx, gy, gn, nullptr); }
+  ~CircleScratch() { mpz_clears(ax, ay, ux, uy, vx, vy, t, u2, v2, q, a, d2, gx, gy, gn, nullptr); }
+  CircleScratch(const CircleScratch&) = delete;
+  CircleScratch& operator=(const CircleScratch&) = delete;
+};
+
+CircleScratch& circle_scratch() {
+  thread_local CircleScratch s;
+  return s;
+}
+
 /// n/d = m·2^x with m ∈ [0.5, 1) (n, d > 0): the integer quotient is taken with ≥ 54
 /// significant bits (truncation error < 2⁻⁵⁴ relative) and then truncated to 53 bits, so
 /// m·2^x is within 1.25 ulp of n/d. Returns m; x in `exp`.
-double ratio_frexp(const mpz_class& n, const mpz_class& d, long& exp) {
-  long s = 55 + static_cast<long>(mpz_sizeinbase(d.get_mpz_t(), 2)) -
-           static_cast<long>(mpz_sizeinbase(n.get_mpz_t(), 2));
+double ratio_frexp(mpz_srcptr n, mpz_srcptr d, long& exp) {
+  long s = 55 + static_cast<long>(mpz_sizeinbase(d, 2)) -
+           static_cast<long>(mpz_sizeinbase(n, 2));
   if (s < 0) s = 0;
-  mpz_class q = n << static_cast<unsigned long>(s);
-  q /= d;  // truncating division
+  mpz_ptr q = circle_scratch().q;
+  mpz_mul_2exp(q, n, static_cast<mp_bitcnt_t>(s));
+  mpz_tdiv_q(q, q, d);  // truncating division
   long ex = 0;
-  const double mant = mpz_get_d_2exp(&ex, q.get_mpz_t());
+  const double mant = mpz_get_d_2exp(&ex, q);
   exp = ex - s;
   return mant;
 }
 
 /// n/d · 2^e to double (d > 0), within 1.25 ulp (plus the rounding of ldexp into the
 /// subnormal range; ±inf beyond the double range).
-double ratio_to_double(const mpz_class& n, const mpz_class& d, long e) {
-  if (sgn(n) == 0) return 0.0;
+double ratio_to_double(mpz_srcptr n, mpz_srcptr d, long e) {
+  if (mpz_sgn(n) == 0) return 0.0;
+  mpz_ptr a = circle_scratch().a;
+  mpz_abs(a, n);
   long x = 0;
-  const double mant = ratio_frexp(abs(n), d, x);
+  const double mant = ratio_frexp(a, d, x);
   const double v = std::ldexp(mant, static_cast<int>(std::clamp(x + e, -4000L, 4000L)));
-  return sgn(n) < 0 ? -v : v;
+  return mpz_sgn(n) < 0 ? -v : v;
 }
 
 void finish(ExactCircle& c) {
   const long e = c.exponent;
-  c.center_d = {ratio_to_double(c.nx, c.den, e), ratio_to_double(c.ny, c.den, e)};
+  c.center_d = {ratio_to_double(c.nx.get_mpz_t(), c.den.get_mpz_t(), e),
+                ratio_to_double(c.ny.get_mpz_t(), c.den.get_mpz_t(), e)};
   c.scale = 1.0;
   c.scale_exponent = 0;
   c.radius_scaled = 0.0;
@@ -117,7 +152,9 @@ void finish(ExactCircle& c) {
   if (sgn(c.r2num) == 0) return;
   // R*² = m·2^T, m ∈ [0.5, 1); scale s = 2^k with k = −⌊T/2⌋ puts R*²·s² in [0.5, 2).
   long x = 0;
-  const double m = ratio_frexp(c.r2num, mpz_class(c.den * c.den), x);
+  mpz_ptr den2 = circle_scratch().d2;
+  mpz_mul(den2, c.den.get_mpz_t(), c.den.get_mpz_t());
+  const double m = ratio_frexp(c.r2num.get_mpz_t(), den2, x);
   const long t = x + 2 * e;
   const long k = -((t >= 0 ? t : t - 1) / 2);  // −⌊t/2⌋
   c.scale_exponent = static_cast<int>(std::clamp(k, -4000L, 4000L));
@@ -219,16 +256,22 @@ ExactCircle exact_diametral_circle(Point2 a, Point2 b) {
   c.support[0] = a;
   c.support[1] = b;
   const int e = min_exponent({a.x, a.y, b.x, b.y});
-  const mpz_class ax = scaled(a.x, e), ay = scaled(a.y, e);
-  const mpz_class bx = scaled(b.x, e), by = scaled(b.y, e);
+  CircleScratch& w = circle_scratch();
+  set_scaled(w.ax, a.x, e);
+  set_scaled(w.ay, a.y, e);
+  set_scaled(w.ux, b.x, e);
+  set_scaled(w.uy, b.y, e);
   // centre = (a + b)/2, centre − a = (b − a)/2.
   c.exponent = e;
   c.den = 2;
-  c.nx = ax + bx;
-  c.ny = ay + by;
-  c.ox = bx - ax;  // centre − a = (b − a)/2, den = 2
-  c.oy = by - ay;
-  c.r2num = c.ox * c.ox + c.oy * c.oy;
+  mpz_add(c.nx.get_mpz_t(), w.ax, w.ux);
+  mpz_add(c.ny.get_mpz_t(), w.ay, w.uy);
+  mpz_ptr ox = c.ox.get_mpz_t(), oy = c.oy.get_mpz_t();
+  mpz_sub(ox, w.ux, w.ax);  // centre − a = (b − a)/2, den = 2
+  mpz_sub(oy, w.uy, w.ay);
+  mpz_ptr r2 = c.r2num.get_mpz_t();
+  mpz_mul(r2, ox, ox);
+  mpz_addmul(r2, oy, oy);
   finish(c);
   return c;
 }
@@ -238,37 +281,64 @@ ExactCircle exact_circumcircle(Point2 a, Point2 b, Point2 cc) {
   c.support_size = 3;
   c.support = {a, b, cc};
   const int e = min_exponent({a.x, a.y, b.x, b.y, cc.x, cc.y});
-  const mpz_class ax = scaled(a.x, e), ay = scaled(a.y, e);
+  CircleScratch& w = circle_scratch();
+  set_scaled(w.ax, a.x, e);
+  set_scaled(w.ay, a.y, e);
   // Relative to a: u = b − a, v = c − a; centre − a = (v_y|u|² − u_y|v|², u_x|v|² − v_x|u|²)/d
   // with d = 2(u_x v_y − u_y v_x) (Cramer on the bisector equations 2u·x = |u|², 2v·x = |v|²).
-  const mpz_class ux = scaled(b.x, e) - ax, uy = scaled(b.y, e) - ay;
-  const mpz_class vx = scaled(cc.x, e) - ax, vy = scaled(cc.y, e) - ay;
-  mpz_class d = 2 * (ux * vy - uy * vx);
-  if (sgn(d) == 0)
+  set_scaled(w.ux, b.x, e);
+  mpz_sub(w.ux, w.ux, w.ax);
+  set_scaled(w.uy, b.y, e);
+  mpz_sub(w.uy, w.uy, w.ay);
+  set_scaled(w.vx, cc.x, e);
+  mpz_sub(w.vx, w.vx, w.ax);
+  set_scaled(w.vy, cc.y, e);
+  mpz_sub(w.vy, w.vy, w.ay);
+  mpz_ptr d = c.den.get_mpz_t();
+  mpz_mul(d, w.ux, w.vy);
+  mpz_mul(w.t, w.uy, w.vx);
+  mpz_sub(d, d, w.t);
+  mpz_mul_2exp(d, d, 1);
+  if (mpz_sgn(d) == 0)
     throw std::logic_error("exact_circumcircle: collinear support points (internal error)");
-  const mpz_class u2 = ux * ux + uy * uy, v2 = vx * vx + vy * vy;
-  mpz_class ox = vy * u2 - uy * v2, oy = ux * v2 - vx * u2;
-  if (sgn(d) < 0) {
-    d = -d;
-    ox = -ox;
-    oy = -oy;
+  mpz_mul(w.u2, w.ux, w.ux);
+  mpz_addmul(w.u2, w.uy, w.uy);
+  mpz_mul(w.v2, w.vx, w.vx);
+  mpz_addmul(w.v2, w.vy, w.vy);
+  mpz_ptr ox = c.ox.get_mpz_t(), oy = c.oy.get_mpz_t();
+  mpz_mul(ox, w.vy, w.u2);
+  mpz_submul(ox, w.uy, w.v2);
+  mpz_mul(oy, w.ux, w.v2);
+  mpz_submul(oy, w.vx, w.u2);
+  if (mpz_sgn(d) < 0) {
+    mpz_neg(d, d);
+    mpz_neg(ox, ox);
+    mpz_neg(oy, oy);
   }
   c.exponent = e;
-  c.den = d;
-  c.nx = ax * d + ox;
-  c.ny = ay * d + oy;
-  c.r2num = ox * ox + oy * oy;
-  c.ox = std::move(ox);
-  c.oy = std::move(oy);
+  mpz_ptr nx = c.nx.get_mpz_t(), ny = c.ny.get_mpz_t();
+  mpz_mul(nx, w.ax, d);
+  mpz_add(nx, nx, ox);
+  mpz_mul(ny, w.ay, d);
+  mpz_add(ny, ny, oy);
+  mpz_ptr r2 = c.r2num.get_mpz_t();
+  mpz_mul(r2, ox, ox);
+  mpz_addmul(r2, oy, oy);
   finish(c);
   return c;
 }
 
 int compare_radius(const ExactCircle& a, const ExactCircle& b) {
   const int m = std::min(a.exponent, b.exponent);
-  const mpz_class lhs = shifted(a.r2num * b.den * b.den, 2 * (a.exponent - m));
-  const mpz_class rhs = shifted(b.r2num * a.den * a.den, 2 * (b.exponent - m));
-  return cmp(lhs, rhs) < 0 ? -1 : (cmp(lhs, rhs) > 0 ? 1 : 0);
+  CircleScratch& w = circle_scratch();
+  mpz_mul(w.gx, a.r2num.get_mpz_t(), b.den.get_mpz_t());
+  mpz_mul(w.gx, w.gx, b.den.get_mpz_t());
+  mpz_mul_2exp(w.gx, w.gx, static_cast<mp_bitcnt_t>(2 * (a.exponent - m)));
+  mpz_mul(w.gy, b.r2num.get_mpz_t(), a.den.get_mpz_t());
+  mpz_mul(w.gy, w.gy, a.den.get_mpz_t());
+  mpz_mul_2exp(w.gy, w.gy, static_cast<mp_bitcnt_t>(2 * (b.exponent - m)));
+  const int s = mpz_cmp(w.gx, w.gy);
+  return s < 0 ? -1 : (s > 0 ? 1 : 0);
 }
 
 bool same_center(const ExactCircle& a, const ExactCircle& b) {
@@ -308,18 +378,6 @@ struct TieScratch {
   TieScratch(const TieScratch&) = delete;
   TieScratch& operator=(const TieScratch&) = delete;
 };
-
-/// out = x·2^−e for a multiple x of 2^e (as `scaled`, without temporaries).
-void set_scaled(mpz_ptr out, double x, int e) {
-  if (x == 0.0) {
-    mpz_set_ui(out, 0);
-    return;
-  }
-  int k = 0;
-  const double f = std::frexp(x, &k);
-  mpz_set_d(out, std::ldexp(f, 53));
-  mpz_mul_2exp(out, out, static_cast<mp_bitcnt_t>(k - 53 - e));
-}
 
 /// Lowest set bit of a finite nonzero double: v = odd · 2^result.
 int low_bit_exponent(double v) {
@@ -432,17 +490,25 @@ mpq_class exact_r2(const ExactCircle& circle) {
 }
 
 double exact_power_gap(const ExactCircle& circle, Point2 p) {
-  // Common exponent e' = min(e, exponents of p); shift the circle's integers by e − e'.
+  // Common exponent e' = min(e, exponents of p); shift the circle's integers by e − e':
+  // num = r2num·4^s − |P·den − N·2^s|² with P = p·2^−e'.
   const int e = std::min(circle.exponent, min_exponent({p.x, p.y}));
-  const int s = circle.exponent - e;
-  const mpz_class nx = shifted(circle.nx, s), ny = shifted(circle.ny, s);
-  const mpz_class r2num = shifted(circle.r2num, 2 * s);
-  const mpz_class dx = scaled(p.x, e) * circle.den - nx;
-  const mpz_class dy = scaled(p.y, e) * circle.den - ny;
-  const mpz_class num = r2num - dx * dx - dy * dy;
+  const auto s = static_cast<mp_bitcnt_t>(circle.exponent - e);
+  CircleScratch& w = circle_scratch();
+  set_scaled(w.gx, p.x, e);
+  mpz_mul(w.gx, w.gx, circle.den.get_mpz_t());
+  mpz_mul_2exp(w.t, circle.nx.get_mpz_t(), s);
+  mpz_sub(w.gx, w.gx, w.t);
+  set_scaled(w.gy, p.y, e);
+  mpz_mul(w.gy, w.gy, circle.den.get_mpz_t());
+  mpz_mul_2exp(w.t, circle.ny.get_mpz_t(), s);
+  mpz_sub(w.gy, w.gy, w.t);
+  mpz_mul_2exp(w.gn, circle.r2num.get_mpz_t(), 2 * s);
+  mpz_submul(w.gn, w.gx, w.gx);
+  mpz_submul(w.gn, w.gy, w.gy);
+  mpz_mul(w.d2, circle.den.get_mpz_t(), circle.den.get_mpz_t());
   // Value · scale² = num/den² · 2^(2e' + 2k).
-  return ratio_to_double(num, mpz_class(circle.den * circle.den),
-                         2L * e + 2L * circle.scale_exponent);
+  return ratio_to_double(w.gn, w.d2, 2L * e + 2L * circle.scale_exponent);
 }
 
 }  // namespace vcmm::geometry::internal

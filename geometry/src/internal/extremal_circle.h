@@ -9,6 +9,7 @@
 // u = 2⁻⁵³ is the unit roundoff.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <limits>
@@ -101,6 +102,56 @@ struct ExactCircle {
 inline double scaled_distance2(Point2 p, Point2 c, double scale) {
   const double dx = (p.x - c.x) * scale, dy = (p.y - c.y) * scale;
   return dx * dx + dy * dy;
+}
+
+/// Local refinement of a round's supports without an O(n) pass (a warm-start helper:
+/// correctness never depends on it). From input index i, looks along the input order
+/// (cyclically, both ways) at the `window` neighbours each way and on beyond them while
+/// the scaled squared distance D̃ from c keeps strictly increasing (kFarthest) or
+/// decreasing (!kFarthest), at most `limit` steps a way, and returns the most extreme
+/// point seen (i itself when none is more extreme). On a profile scanned in angular order
+/// the supports of a circle fitted to a sparse candidate set sit a few indices off the
+/// contacts of the full set (near a smooth extremum a small centre shift moves it along
+/// the profile), or in a neighbouring valley of the same sector; the walk finds those
+/// points, which would otherwise be the violators of the next full pass.
+template <bool kFarthest>
+std::size_t local_extreme(std::span<const Point2> points, std::size_t i, Point2 c,
+                          double scale, std::size_t window, std::size_t limit) {
+  if (points.size() < 2) return i;
+  const std::size_t n = points.size();
+  const auto better = [](double a, double b) { return kFarthest ? a > b : a < b; };
+  const double d0 = scaled_distance2(points[i], c, scale);
+  std::size_t best = i;
+  double best_d = d0;
+  window = std::min(window, limit);
+  for (const bool forward : {true, false}) {
+    const auto next = [&](std::size_t j) {
+      return forward ? (j + 1 == n ? 0 : j + 1) : (j == 0 ? n - 1 : j - 1);
+    };
+    // The window: every neighbour, branch-free selects (noisy data: unpredictable).
+    std::size_t j = i;
+    double dj = d0;
+    for (std::size_t step = 1; step <= window; ++step) {
+      j = next(j);
+      dj = scaled_distance2(points[j], c, scale);
+      const bool b = better(dj, best_d);
+      best = b ? j : best;
+      best_d = b ? dj : best_d;
+    }
+    // Beyond it: on while the distance keeps moving the same way.
+    for (std::size_t step = window + 1; step <= limit; ++step) {
+      const std::size_t k = next(j);
+      const double dk = scaled_distance2(points[k], c, scale);
+      if (!better(dk, dj)) break;
+      j = k;
+      dj = dk;
+      if (better(dj, best_d)) {
+        best = j;
+        best_d = dj;
+      }
+    }
+  }
+  return best;
 }
 
 /// Exact comparison of the radii of two circles (−1, 0, +1).

@@ -36,6 +36,8 @@ class InscribedLp {
 
   /// Adds candidate point i (no effect when already a candidate).
   void add(std::size_t i);
+  /// Whether point i is a candidate already.
+  bool contains(std::size_t i) const { return in_[i] != 0; }
 
   /// Linearises every candidate at c0 (input coordinates) and solves, warm-started from
   /// the previous basis when it is still feasible. False when no three candidates surround

@@ -107,20 +107,38 @@ void set_scaled(mpz_ptr out, double v, int E) {
   }
 }
 
-/// Nearest double of num/den · 2^exp (den > 0): MPFR division, one rounding.
+/// Nearest double of num/den · 2^exp (den > 0): MPFR division, one rounding. The two MPFR
+/// numbers are kept per thread (set_prec reuses their limbs when they suffice).
 double rounded_quotient(mpz_srcptr num, mpz_srcptr den, long exp) {
   if (mpz_sgn(num) == 0) return 0.0;
-  mpfr_t n, q;
-  mpfr_init2(n, static_cast<mpfr_prec_t>(std::max<std::size_t>(mpz_sizeinbase(num, 2), 2)));
-  mpfr_init2(q, 53);
-  mpfr_set_z(n, num, MPFR_RNDN);  // exact: precision = bit length
-  mpfr_mul_2si(n, n, exp, MPFR_RNDN);  // exact: a power of two
-  mpfr_div_z(q, n, den, MPFR_RNDN);
-  const double v = mpfr_get_d(q, MPFR_RNDN);  // exact: q has 53 bits
-  mpfr_clear(n);
-  mpfr_clear(q);
-  return v;
+  struct Scratch {
+    mpfr_t n, q;
+    Scratch() {
+      mpfr_init2(n, 64);
+      mpfr_init2(q, 53);
+    }
+    ~Scratch() {
+      mpfr_clear(n);
+      mpfr_clear(q);
+    }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+  };
+  thread_local Scratch s;
+  mpfr_set_prec(s.n,
+                static_cast<mpfr_prec_t>(std::max<std::size_t>(mpz_sizeinbase(num, 2), 2)));
+  mpfr_set_z(s.n, num, MPFR_RNDN);  // exact: precision = bit length
+  mpfr_mul_2si(s.n, s.n, exp, MPFR_RNDN);  // exact: a power of two
+  mpfr_div_z(s.q, s.n, den, MPFR_RNDN);
+  return mpfr_get_d(s.q, MPFR_RNDN);  // exact: q has 53 bits
 }
+
+/// The integers of rounded_annulus, kept per thread (~30 heap allocations a call before;
+/// every one is written before it is read, so nothing carries over between calls).
+struct AnnulusScratch {
+  Int c[8];
+  Int bx, by, ex, ey, dx, dy, ax, ay, t1, t2, D, r1, r2, X, Y, NR, Nr, D2, Cx, Cy;
+};
 
 }  // namespace
 
@@ -135,12 +153,14 @@ std::optional<RoundedAnnulus> rounded_annulus(std::span<const Point2> points,
     for (const double v : {p.x, p.y})
       if (v != 0.0) E = std::min(E, low_bit_exponent(v));
   if (E == std::numeric_limits<int>::max()) return std::nullopt;  // all zero: coincident
-  Int c[8];
+  thread_local AnnulusScratch w;
+  Int(&c)[8] = w.c;
   for (int i = 0; i < 4; ++i) {
     set_scaled(c[2 * i].get(), q[i].x, E);
     set_scaled(c[2 * i + 1].get(), q[i].y, E);
   }
-  Int bx, by, ex, ey, dx, dy, ax, ay, t1, t2, D, r1, r2, X, Y;
+  Int &bx = w.bx, &by = w.by, &ex = w.ex, &ey = w.ey, &dx = w.dx, &dy = w.dy, &ax = w.ax,
+      &ay = w.ay, &t1 = w.t1, &t2 = w.t2, &D = w.D, &r1 = w.r1, &r2 = w.r2, &X = w.X, &Y = w.Y;
   mpz_sub(bx.get(), c[2].get(), c[0].get());
   mpz_sub(by.get(), c[3].get(), c[1].get());
   mpz_sub(ex.get(), c[4].get(), c[0].get());
@@ -173,7 +193,7 @@ std::optional<RoundedAnnulus> rounded_annulus(std::span<const Point2> points,
     mpz_neg(Y.get(), Y.get());
   }
   // NR = X² + Y², Nr = (X − e_x D)² + (Y − e_y D)²
-  Int NR, Nr, D2, Cx, Cy;
+  Int &NR = w.NR, &Nr = w.Nr, &D2 = w.D2, &Cx = w.Cx, &Cy = w.Cy;
   mpz_mul(NR.get(), X.get(), X.get());
   mpz_addmul(NR.get(), Y.get(), Y.get());
   mpz_set(t1.get(), X.get());

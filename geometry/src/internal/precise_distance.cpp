@@ -25,10 +25,28 @@ TwoDoubles split_quotient(mpz_srcptr num, mpz_srcptr den, long exp, double* erro
   }
   // hi: the correctly rounded quotient (one MPFR division to 53 bits); lo: the rounding of
   // the remainder of a 160-bit quotient (2⁻¹⁶⁰ relative, far below lo's own ulp).
-  mpfr_t n, h, q;
-  mpfr_init2(n, static_cast<mpfr_prec_t>(std::max<std::size_t>(mpz_sizeinbase(num, 2), 2)));
-  mpfr_init2(h, 53);
-  mpfr_init2(q, 160);
+  // The three MPFR numbers are kept per thread (set_prec reuses their limbs when they
+  // suffice); every one is written before it is read.
+  struct Scratch {
+    mpfr_t n, h, q;
+    Scratch() {
+      mpfr_init2(n, 64);
+      mpfr_init2(h, 53);
+      mpfr_init2(q, 160);
+    }
+    ~Scratch() {
+      mpfr_clear(n);
+      mpfr_clear(h);
+      mpfr_clear(q);
+    }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+  };
+  thread_local Scratch s;
+  auto& n = s.n;
+  auto& h = s.h;
+  auto& q = s.q;
+  mpfr_set_prec(n, static_cast<mpfr_prec_t>(std::max<std::size_t>(mpz_sizeinbase(num, 2), 2)));
   mpfr_set_z(n, num, MPFR_RNDN);       // exact: precision = bit length
   mpfr_mul_2si(n, n, exp, MPFR_RNDN);  // exact: a power of two
   mpfr_div_z(h, n, den, MPFR_RNDN);
@@ -42,9 +60,6 @@ TwoDoubles split_quotient(mpz_srcptr num, mpz_srcptr den, long exp, double* erro
   } else {
     *error = kInf;  // beyond the double range (or underflowed to 0): no usable filter
   }
-  mpfr_clear(n);
-  mpfr_clear(h);
-  mpfr_clear(q);
   return out;
 }
 

@@ -74,7 +74,8 @@ nlohmann::ordered_json to_json(std::span<const g::Point2> profile, const g::Roun
     j["certified"] = false;
     j["optimality"] = "numerical";
     j["certificate"] = "none: least squares is a numerical fit (Gauss-Newton converged in " +
-                       std::to_string(c.iterations) + " iterations)";
+                       std::to_string(c.iterations) +
+                       (c.iterations == 1 ? " iteration)" : " iterations)");
     out["LS"] = j;
   }
   if (e.minimum_zone) {

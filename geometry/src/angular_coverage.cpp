@@ -24,11 +24,14 @@
 // the tests, the general path runs.
 #include "vcmm/geometry/angular_coverage.h"
 #include "internal/angular_walk.h"
+#include "internal/vec.h"
 
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <cmath>
 #include <numbers>
@@ -130,7 +133,19 @@ std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
   if (!find_wrap) return Walk{ccw, tm, 0};
   // The wrap: in increasing angle, the one step from the upper half (atan2 in [+0, π]: sign
   // bit of y clear) into the lower one (sign bit set, −0 included: atan2(−0, x < 0) = −π).
-  for (std::size_t i = 0; i < n; ++i) {
+  // Four steps a test on the sign bits (the first block holding it), then the step itself.
+  std::size_t i = 0;
+  {
+    using M4 = internal::VecOf<4>::mask;  // internal/vec.h
+    for (; i + 4 <= n; i += 4) {
+      M4 a, b;  // the bits of y_i … y_{i+3} and y_{i+1} … y_{i+4}
+      std::memcpy(&a, y + i, sizeof a);
+      std::memcpy(&b, y + i + 1, sizeof b);
+      const M4 hit = ccw ? (~a & b) : (a & ~b);  // sign bit: this step is the wrap
+      if (((hit[0] | hit[1]) | (hit[2] | hit[3])) < 0) break;
+    }
+  }
+  for (; i < n; ++i) {
     const bool a_upper = !std::signbit(y[i]), b_upper = !std::signbit(y[i + 1]);
     if (ccw ? (a_upper && !b_upper) : (!a_upper && b_upper)) return Walk{ccw, tm, i};
   }

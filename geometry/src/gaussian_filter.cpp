@@ -260,9 +260,12 @@ void check_cutoff(const char* caller, double cutoff_upr) {
 double degrees(double rad) { return rad * 180.0 / kPi; }
 
 /// Filtered deviations of an unevenly spaced closed profile (see the file header), in input
-/// order. `angle` are the directions about the filter centre in (−π, π].
+/// order. `angle` are the directions about the filter centre in (−π, π]. A gap wider than
+/// λc/2 throws InvalidInput, or, with `not_closed` given, sets *not_closed and returns
+/// nothing.
 std::vector<double> filter_nonuniform(const std::vector<double>& angle,
-                                      const std::vector<double>& deviation, double cutoff_upr) {
+                                      const std::vector<double>& deviation, double cutoff_upr,
+                                      bool* not_closed = nullptr) {
   const std::size_t n = angle.size();
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
@@ -277,6 +280,10 @@ std::vector<double> filter_nonuniform(const std::vector<double>& angle,
     const double next = j + 1 < n ? angle[order[j + 1]] : angle[order[0]] + 2 * kPi;
     gap[j] = next - angle[order[j]];
     if (gap[j] > max_gap) {
+      if (not_closed) {
+        *not_closed = true;
+        return {};
+      }
       std::ostringstream os;
       os << "gaussian_filtered_profile: profile is not closed: angular gap of "
          << degrees(gap[j]) << "° between points " << order[j] << " and "
@@ -601,13 +608,15 @@ SetupVerdict setup_pass(int degree, const SetupPass& p, Eigen::Index count,
 /// The filter of validated points about the circle (center, radius) (file comment), into
 /// `out` (storage reused), and the LS circle of the output into *filtered_ls when asked.
 /// deviation_bound: the largest |r_i − R| expected (RONt of the LS circle), which picks the
-/// degree of the distance series (a wrong value costs time, never accuracy). form_points
-/// false (with filtered_ls): `out.points` is left empty when the FFT path was taken and the
-/// one step on the rays gave *filtered_ls (the caller wants only that circle).
+/// degree of the distance series (a wrong value costs time, never accuracy). With
+/// `not_closed` given, a profile that is not closed sets it (and leaves `out` unusable)
+/// instead of throwing. form_points false (with filtered_ls): `out.points` is left empty
+/// when the FFT path was taken and the one step on the rays gave *filtered_ls (the caller
+/// wants only that circle).
 void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 center,
                   double radius, double deviation_bound, FilterPathChoice choice,
                   const char* caller, FilteredProfile& out, LeastSquaresCircle* filtered_ls,
-                  bool form_points = true) {
+                  bool* not_closed = nullptr, bool form_points = true) {
   const std::size_t n = points.size();
   out.filter_center = center;
   out.mean_radius = radius;
@@ -703,7 +712,8 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
     std::vector<double> angle(n), dev(v.deviation.data(), v.deviation.data() + n);
     for (Eigen::Index i = 0; i < count; ++i)
       angle[static_cast<std::size_t>(i)] = std::atan2(v.y[i], v.x[i]);
-    const std::vector<double> f = filter_nonuniform(angle, dev, cutoff_upr);
+    const std::vector<double> f = filter_nonuniform(angle, dev, cutoff_upr, not_closed);
+    if (not_closed && *not_closed) return;
     v.filtered = Eigen::Map<const Eigen::ArrayXd>(f.data(), count);
   }
 
@@ -741,11 +751,12 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
 void filter_any_order(std::span<const Point2> points, double cutoff_upr,
                       const LeastSquaresCircle& ls, FilterPathChoice choice, const char* caller,
                       FilteredProfile& out, LeastSquaresCircle* filtered_ls,
-                      bool form_points = true) {
+                      bool* not_closed = nullptr, bool form_points = true) {
   const Point2 center = ls.center;
   const double radius = ls.radius, bound = ls.ron.ront;  // |r_i − R| ≤ RONt
   filter_about(points, cutoff_upr, center, radius, bound, choice, caller, out, filtered_ls,
-               form_points);
+               not_closed, form_points);
+  if (not_closed && *not_closed) return;
   if (out.path == FilterPath::fft || choice == FilterPathChoice::nonuniform) return;
   const std::size_t n = points.size();
   std::vector<double> angle(n);
@@ -826,7 +837,7 @@ LeastSquaresCircle gaussian_filtered_least_squares_circle(std::span<const Point2
   thread_local FilteredProfile out;  // the points, formed only for the full fit
   LeastSquaresCircle filtered;
   filter_any_order(points, cutoff_upr, least_squares, FilterPathChoice::automatic, kCaller, out,
-                   &filtered, /*form_points=*/false);
+                   &filtered, nullptr, /*form_points=*/false);
   return filtered;
 }
 
@@ -838,6 +849,19 @@ void gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr
   check_filter_input(points, cutoff_upr, kCaller, &least_squares);
   filter_any_order(points, cutoff_upr, least_squares, choice, kCaller, out,
                    filtered_least_squares);
+}
+
+bool internal::filter_closed_profile_if_closed(std::span<const Point2> points,
+                                               double cutoff_upr,
+                                               const LeastSquaresCircle& least_squares,
+                                               FilteredProfile& out,
+                                               LeastSquaresCircle* filtered_least_squares) {
+  constexpr const char* kCaller = "gaussian_filtered_profile";
+  check_filter_parameters(points, cutoff_upr, kCaller, &least_squares);
+  bool not_closed = false;
+  filter_any_order(points, cutoff_upr, least_squares, FilterPathChoice::automatic, kCaller, out,
+                   filtered_least_squares, &not_closed);
+  return !not_closed;
 }
 
 }  // namespace vcmm::geometry

@@ -185,12 +185,14 @@ MaximumInscribedCircle make_result(std::span<const Point2> points, const ExactCi
   mi.center = circle.center_d;
   mi.radius = circle.radius;
   mi.contacts.assign(contacts.begin(), contacts.end());
-  mi.ron = internal::roundness_parameters_of_valid(points, mi.center, mi.radius);
   // Scaled units: (ρ² − r*²)s² / ((ρ + r*)s), then back by s⁻¹ (exact).
   const double gap_s = -internal::exact_power_gap(circle, points[farthest]);  // ≥ 0 exactly
-  mi.ron.ront = gap_s > 0.0 ? std::ldexp(gap_s / (std::sqrt(max_d2) + circle.radius_scaled),
-                                         -circle.scale_exponent)
-                            : 0.0;
+  const double ront = gap_s > 0.0 ? std::ldexp(gap_s / (std::sqrt(max_d2) + circle.radius_scaled),
+                                               -circle.scale_exponent)
+                                  : 0.0;
+  // RONq (RONt bounds every deviation from the radius: it picks the distance series' degree).
+  mi.ron = internal::roundness_parameters_of_valid(points, mi.center, mi.radius, ront);
+  mi.ron.ront = ront;
   mi.ron.ronp = mi.ron.ront;
   mi.ron.ronv = 0.0;
   mi.certificate = std::move(certificate);

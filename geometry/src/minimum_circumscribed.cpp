@@ -415,13 +415,15 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
     for (std::size_t i : on_circle)
       if (i < c && points[i] == points[c]) c = i;
   // 5. Roundness parameters: RONq from the shared evaluator; RONt without cancellation.
-  mc.ron = internal::roundness_parameters_of_valid(points, mc.center, mc.radius);
   // In the filter's scaled units: (R*² − ρ²)s² / ((R* + ρ)s), then back by s⁻¹ (exact).
   const double rho_s = std::sqrt(nearest_d2);
   const double gap_s = internal::exact_power_gap(circle, points[nearest]);  // ≥ 0 exactly
-  mc.ron.ront = gap_s > 0.0 ? std::ldexp(gap_s / (circle.radius_scaled + rho_s),
-                                         -circle.scale_exponent)
-                            : 0.0;
+  const double ront = gap_s > 0.0 ? std::ldexp(gap_s / (circle.radius_scaled + rho_s),
+                                               -circle.scale_exponent)
+                                  : 0.0;
+  // RONq (RONt bounds every deviation from the radius: it picks the distance series' degree).
+  mc.ron = internal::roundness_parameters_of_valid(points, mc.center, mc.radius, ront);
+  mc.ron.ront = ront;
   mc.ron.ronv = mc.ron.ront;
   mc.ron.ronp = 0.0;
 

@@ -149,7 +149,9 @@
 #include <string>
 #include <vector>
 
+#include "internal/distance_scan.h"
 #include "internal/exact.h"
+#include "internal/isa.h"
 #include "internal/extremal_circle.h"
 #include "internal/minimum_zone_common.h"
 #include "internal/minimum_zone_exact.h"
@@ -394,6 +396,65 @@ bool same_point_as_contact(std::span<const Point2> points, const Quad& q, Point2
          p == points[q.inner[1]];
 }
 
+/// The branch-free map of containment_pass (see there) over points [lo, hi): squared
+/// distances s_i from (cx, cy), squared deviations from the mean circle rm (series on a thin
+/// zone, else the direct formula) and the flag "not surely placed" (s_i ∉ (t_in, t_out)).
+struct ContainmentMap {
+  double cx, cy, rm, rm2, inv, t_out, t_in;
+};
+[[gnu::always_inline]] inline void containment_map_body(bool thin, const ContainmentMap& m,
+                                                        const Point2* __restrict p,
+                                                        std::size_t lo, std::size_t hi,
+                                                        double* __restrict sq,
+                                                        double* __restrict dev2,
+                                                        double* __restrict flag) {
+  const double cx = m.cx, cy = m.cy, rm = m.rm, rm2 = m.rm2, inv = m.inv;
+  const double t_out = m.t_out, t_in = m.t_in;
+  if (thin) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double dx = p[i].x - cx, dy = p[i].y - cy;
+      const double s = dx * dx + dy * dy;
+      const double x = (s - rm2) * inv;
+      const double dev = rm * x * (1.0 + x * (-0.5 + x * (0.5 - 0.625 * x)));
+      sq[i] = s;
+      dev2[i] = dev * dev;
+      flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
+    }
+  } else {
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double dx = p[i].x - cx, dy = p[i].y - cy;
+      const double s = dx * dx + dy * dy;
+      const double dev = (s - rm2) / (std::sqrt(s) + rm);
+      sq[i] = s;
+      dev2[i] = dev * dev;
+      flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
+    }
+  }
+}
+// Compiled for the baseline ISA and for AVX2, chosen per call (internal/isa.h): the same
+// element-wise operations (no FMA: -ffp-contract=off; sqrt and division correctly rounded),
+// so the same bits.
+void containment_map_baseline(bool thin, const ContainmentMap& m, const Point2* p,
+                              std::size_t lo, std::size_t hi, double* sq, double* dev2,
+                              double* flag) {
+  containment_map_body(thin, m, p, lo, hi, sq, dev2, flag);
+}
+#if VCMM_GEOMETRY_X86
+__attribute__((target("avx2"))) void containment_map_avx2(bool thin, const ContainmentMap& m,
+                                                          const Point2* p, std::size_t lo,
+                                                          std::size_t hi, double* sq,
+                                                          double* dev2, double* flag) {
+  containment_map_body(thin, m, p, lo, hi, sq, dev2, flag);
+}
+#endif
+void containment_map(bool thin, const ContainmentMap& m, const Point2* p, std::size_t lo,
+                     std::size_t hi, double* sq, double* dev2, double* flag) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx2()) return containment_map_avx2(thin, m, p, lo, hi, sq, dev2, flag);
+#endif
+  containment_map_baseline(thin, m, p, lo, hi, sq, dev2, flag);
+}
+
 /// One pass: exact containment of every point in the closed annulus of `k` — a floating
 /// filter with rigorous thresholds (surely inside, surely outside), exact rational
 /// comparison only for the ambiguous rest, stopping at the first violation — and RONq about
@@ -444,26 +505,7 @@ PassResult containment_pass(std::span<const Point2> points, const Candidate& k,
   std::vector<std::size_t>& ambiguous = out.ambiguous;
   for (std::size_t lo = 0; lo < n; lo += kBlock) {
     const std::size_t hi = std::min(lo + kBlock, n);
-    if (thin) {
-      for (std::size_t i = lo; i < hi; ++i) {
-        const double dx = p[i].x - cx, dy = p[i].y - cy;
-        const double s = dx * dx + dy * dy;
-        const double x = (s - rm2) * inv;
-        const double dev = rm * x * (1.0 + x * (-0.5 + x * (0.5 - 0.625 * x)));
-        sq[i] = s;
-        dev2[i] = dev * dev;
-        flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
-      }
-    } else {
-      for (std::size_t i = lo; i < hi; ++i) {
-        const double dx = p[i].x - cx, dy = p[i].y - cy;
-        const double s = dx * dx + dy * dy;
-        const double dev = (s - rm2) / (std::sqrt(s) + rm);
-        sq[i] = s;
-        dev2[i] = dev * dev;
-        flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
-      }
-    }
+    containment_map(thin, {cx, cy, rm, rm2, inv, t_out, t_in}, p, lo, hi, sq, dev2, flag);
     for (std::size_t b = lo; b < hi; b += 4) {
       if (flag[b] + flag[b + 1] + flag[b + 2] + flag[b + 3] == 0.0) continue;
       for (std::size_t i = b; i < std::min(b + 4, n); ++i) {
@@ -778,63 +820,6 @@ struct Column {
 
 enum class LpStatus { optimal, failed };
 
-/// First index of the largest and of the smallest squared distance from c among points
-/// [lo, hi) — the strict comparisons of a plain loop, run in four interleaved lanes (the
-/// loop-carried max/min chains of one lane bound a plain loop to ~5 cycles a point; four
-/// lanes: ~25 % faster here, and faster than SSE2 selects, which need three operations each)
-/// and merged with ties to the lowest index, so the result is the plain loop's.
-struct BlockExtremes {
-  std::size_t imax = 0, imin = 0;
-  double smax = -1.0, smin = std::numeric_limits<double>::infinity();
-};
-BlockExtremes block_extremes(std::span<const Point2> points, std::size_t lo, std::size_t hi,
-                             Point2 c) {
-  constexpr std::size_t kLanes = 4;
-  std::array<BlockExtremes, kLanes> lane;
-  for (std::size_t l = 0; l < kLanes; ++l) lane[l].imax = lane[l].imin = lo;
-  std::size_t i = lo;
-  for (; i + kLanes <= hi; i += kLanes) {
-    for (std::size_t l = 0; l < kLanes; ++l) {
-      const double dx = points[i + l].x - c.x, dy = points[i + l].y - c.y;
-      const double s = dx * dx + dy * dy;
-      if (s > lane[l].smax) {
-        lane[l].smax = s;
-        lane[l].imax = i + l;
-      }
-      if (s < lane[l].smin) {
-        lane[l].smin = s;
-        lane[l].imin = i + l;
-      }
-    }
-  }
-  for (; i < hi; ++i) {  // the tail, each point in its lane as above
-    const double dx = points[i].x - c.x, dy = points[i].y - c.y;
-    const double s = dx * dx + dy * dy;
-    BlockExtremes& t = lane[(i - lo) % kLanes];
-    if (s > t.smax) {
-      t.smax = s;
-      t.imax = i;
-    }
-    if (s < t.smin) {
-      t.smin = s;
-      t.imin = i;
-    }
-  }
-  BlockExtremes out = lane[0];
-  for (std::size_t l = 1; l < kLanes; ++l) {
-    const BlockExtremes& t = lane[l];
-    if (t.smax > out.smax || (t.smax == out.smax && t.imax < out.imax)) {
-      out.smax = t.smax;
-      out.imax = t.imax;
-    }
-    if (t.smin < out.smin || (t.smin == out.smin && t.imin < out.imin)) {
-      out.smin = t.smin;
-      out.imin = t.imin;
-    }
-  }
-  return out;
-}
-
 /// The LP of (3) in dual form on a growing set of candidate columns. Columns hold the
 /// linearisation at c0 of their point: ρ − shift and e. `solve` optimises over the
 /// candidates; the driver first tries to certify that optimum exactly (its containment pass
@@ -854,7 +839,8 @@ class ChebyshevLp {
     shift_ = 0.0;
     const std::size_t n = points_.size(), blocks = block_count();
     for (std::size_t b = 0; b < blocks; ++b) {
-      const BlockExtremes e = block_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
+      const internal::DistanceExtremes e =
+          internal::distance_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
       add_candidate({e.imax, true});
       add_candidate({e.imin, false});
     }
@@ -939,7 +925,8 @@ class ChebyshevLp {
     const double R = y_[2] + shift_ + tol, r = std::max(0.0, -y_[3] + shift_ - tol);
     const double R2 = R * R, r2 = r * r;
     for (std::size_t b = 0; b < blocks; ++b) {
-      const BlockExtremes e = block_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
+      const internal::DistanceExtremes e =
+          internal::distance_extremes(points_, b * n / blocks, (b + 1) * n / blocks, c);
       if (e.smax > R2 && add_candidate({e.imax, true})) ++added;
       if (e.smin < r2 && add_candidate({e.imin, false})) ++added;
     }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -50,6 +51,40 @@ std::size_t parse_plain_line(std::string_view s, double v[3]) {
   return 0;
 }
 
+/// Columns picked by a header that names them (point_io.h): field positions of x, y and z
+/// (z: npos when absent) and the header's field count, which every data line must have.
+struct NamedColumns {
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  std::size_t x = npos, y = npos, z = npos, fields = 0;
+};
+
+/// True when header field f names coordinate c ('x', 'y' or 'z'): `c` or `c_mm`, any case.
+bool names_coordinate(std::string_view f, char c) {
+  if (f.empty() || (f[0] != c && f[0] != c - 'a' + 'A')) return false;
+  f.remove_prefix(1);
+  return f.empty() || f == "_mm" || f == "_MM" || f == "_Mm" || f == "_mM";
+}
+
+/// The named columns of a header line, when it names x and y in another layout than the
+/// plain `x,y[,z]` (e.g. `x_mm,y_mm,z_mm,nx,ny,nz`, what `vcmm simulate` writes).
+std::optional<NamedColumns> named_columns(const std::vector<std::string_view>& fields) {
+  NamedColumns c;
+  c.fields = fields.size();
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    const std::string_view f = trim_blanks(fields[k]);
+    std::size_t* slot = names_coordinate(f, 'x')   ? &c.x
+                        : names_coordinate(f, 'y') ? &c.y
+                        : names_coordinate(f, 'z') ? &c.z
+                                                   : nullptr;
+    if (slot && *slot == NamedColumns::npos) *slot = k;
+  }
+  if (c.x == NamedColumns::npos || c.y == NamedColumns::npos) return std::nullopt;
+  const bool plain = c.x == 0 && c.y == 1 && fields.size() <= 3 &&
+                     (fields.size() == 2 || c.z == 2);
+  if (plain) return std::nullopt;
+  return c;
+}
+
 /// The rules of read_points_csv on a whole text (read at once: one pass, no stream per line).
 PointTable parse_points_csv(std::string_view text, const std::string& source_name) {
   PointTable table;
@@ -59,6 +94,7 @@ PointTable parse_points_csv(std::string_view text, const std::string& source_nam
   std::size_t line_no = 0;
   std::size_t columns = 0;  // fixed by the first data line
   bool seen_content = false;
+  std::optional<NamedColumns> named;  // set by a header naming its x, y (z) columns
   std::vector<std::string_view> fields;
   internal::for_each_line(text, [&](std::string_view s) {
     ++line_no;
@@ -67,6 +103,27 @@ PointTable parse_points_csv(std::string_view text, const std::string& source_nam
     s = trim_blanks(s);
     if (s.empty()) return;
     double v[3] = {0, 0, 0};
+    if (named) {
+      split_csv_fields(s, fields);
+      if (fields.size() != named->fields) {
+        fail(source_name, line_no,
+             "has " + std::to_string(fields.size()) + " fields but the header has " +
+                 std::to_string(named->fields));
+      }
+      const std::size_t picked[3] = {named->x, named->y, named->z};
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (picked[k] == NamedColumns::npos) continue;
+        const FieldStatus st = parse_double_field(fields[picked[k]], v[k]);
+        if (st != FieldStatus::ok)
+          fail(source_name, line_no,
+               "field " + std::to_string(picked[k] + 1) + " " +
+                   number_field_problem(st, fields[picked[k]]));
+      }
+      table.points.push_back({v[0], v[1]});
+      if (named->z != NamedColumns::npos) table.z.push_back(v[2]);
+      table.line.push_back(line_no);
+      return;
+    }
     if (const std::size_t count = parse_plain_line(s, v);
         count != 0 && (columns == 0 || count == columns)) {
       seen_content = true;
@@ -94,12 +151,18 @@ PointTable parse_points_csv(std::string_view text, const std::string& source_nam
       seen_content = true;
       // A first line with a field that is not a number is a header; numbers gone wrong
       // (nan/inf) or a wrong count of numbers are errors.
-      if (!numeric && bad_status == FieldStatus::not_a_number) return;
+      if (!numeric && bad_status == FieldStatus::not_a_number) {
+        named = named_columns(fields);
+        return;
+      }
     }
     if (fields.size() < 2 || fields.size() > 3) {
       fail(source_name, line_no,
            "expected 2 or 3 fields (x,y or x,y,z in mm), found " +
-               std::to_string(fields.size()));
+               std::to_string(fields.size()) +
+               (fields.size() > 3
+                    ? " (more columns need a header naming x and y: x or x_mm, y or y_mm)"
+                    : ""));
     }
     if (!numeric)
       fail(source_name, line_no,

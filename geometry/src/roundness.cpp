@@ -6,8 +6,11 @@
 // and the circles are fitted through their internal twins (internal/prevalidated.h). LS,
 // MZ and MI share one precondition (≥ 3 finite points, not all collinear); MC's (≥ 2, not
 // all identical) is weaker, so whichever comes first covers the rest. The filter
-// validates the raw profile and builds the filtered one from it. An UndefinedResult of one
-// circle (MI of an arc, MZ of nearly straight data) is recorded, not thrown: the other
+// validates the raw profile and builds the filtered one from it; the closed filter also
+// returns the LS circle of its output (one Gauss-Newton step from the raw LS centre, as
+// validation's ring evaluation takes it: the full fit's circle to ~1 ulp of the
+// coordinates, gaussian_filter.h), so LS is not fitted a second time. An UndefinedResult of
+// one circle (MI of an arc, MZ of nearly straight data) is recorded, not thrown: the other
 // circles still come out.
 #include "vcmm/geometry/roundness.h"
 
@@ -63,18 +66,37 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
   out.n_points = points.size();
   out.filter_cutoff_upr = request.filter_cutoff_upr;
   std::span<const Point2> profile = points;
+  std::optional<LeastSquaresCircle> filtered_ls;  // of the closed filter's output, by the filter
   if (request.filter_cutoff_upr) {
     // A closed profile takes the closed filter; an arc (a gap wider than λc/2 = π/f_c, which
     // the closed filter refuses) the open-profile filter.
+    const double cutoff = *request.filter_cutoff_upr;
     validate_profile(points, 8, "gaussian_filtered_profile");
     const LeastSquaresCircle raw_ls = internal::fit_least_squares_circle(points);
-    const double max_gap = kHalfTurn / *request.filter_cutoff_upr;
-    const bool open = !internal::has_angular_steps_below(points, raw_ls.center, max_gap) &&
-                      angular_coverage(points, raw_ls.center).largest_gap_rad > max_gap;
-    // The closed filter about the LS circle just fitted (the same fit it would repeat).
-    FilteredProfile f =
-        open ? gaussian_filtered_open_profile(points, *request.filter_cutoff_upr)
-             : gaussian_filtered_profile(points, *request.filter_cutoff_upr, raw_ls);
+    LeastSquaresCircle* ls_out = request.least_squares ? &filtered_ls.emplace() : nullptr;
+    FilteredProfile f;
+    // The closed filter about the LS circle just fitted (the same fit it would repeat); it
+    // builds its output on the rays from that centre and so gives the output's LS circle in
+    // one Gauss-Newton step (gaussian_filter.h; the full fit where that step is not exact).
+    // Closed or not: when no FFT-path profile can have a gap beyond λc/2 (its rays are each
+    // less than half a step off an equiangular grid, so neighbours are less than 2 steps,
+    // 4π/(n − 1), apart: below π/f_c with a margin far above rounding), the closed filter
+    // decides it itself — its nonuniform path sorts the same angles angular_coverage would;
+    // otherwise (f_c near n/4 or above) the coverage is taken first, as the filter cannot tell.
+    const auto n = static_cast<double>(points.size());
+    bool closed = false;
+    if (n - 1.0 > 4.0 * cutoff * (1.0 + 1e-6)) {
+      closed = internal::filter_closed_profile_if_closed(points, cutoff, raw_ls, f, ls_out);
+    } else {
+      const double max_gap = kHalfTurn / cutoff;
+      closed = internal::has_angular_steps_below(points, raw_ls.center, max_gap) ||
+               !(angular_coverage(points, raw_ls.center).largest_gap_rad > max_gap);
+      if (closed) gaussian_filtered_profile(points, cutoff, raw_ls, f, ls_out);
+    }
+    if (!closed) {
+      f = gaussian_filtered_open_profile(points, cutoff);
+      filtered_ls.reset();
+    }
     out.filter_path = f.path;
     out.filtered_points = std::move(f.points);
     profile = out.filtered_points;
@@ -84,7 +106,12 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
   // same points through their internal twins. UndefinedResult is recorded per circle.
   bool validated = false;  // by a fitter with the (stricter) LS/MZ/MI precondition
   if (request.least_squares) {
-    out.least_squares = least_squares_circle(profile);
+    if (filtered_ls) {
+      validate_profile(profile, 3, "least_squares_circle");
+      out.least_squares = std::move(filtered_ls);
+    } else {
+      out.least_squares = least_squares_circle(profile);
+    }
     validated = true;
   }
   if (request.minimum_zone) {

@@ -10,9 +10,19 @@
 // centre and radius — InvalidInput naming the function, the rule and the value. The fitters
 // call the unchecked twin (internal/prevalidated.h) on points they have validated.
 //
-// Speed (SSE2): the distances are taken two at a time — the packet square root is the scalar
-// one, correctly rounded — and the extremes by packet min/max (exact, in any order); Σ d²
-// keeps its sequential order, so every result is bit for bit that of the scalar loop.
+// Speed. Points near the reference circle (|s| ≤ 2⁻⁹, s = (|p − c|² − R₀²)/R₀², deviations up
+// to ~1e-3 R: every roundness profile about its own reference circles) take their distances
+// from internal/near_circle.h — r = R₀ + R₀·P₆(s), within ½ ulp + 2⁻⁵⁹ r of √q (std::sqrt's
+// value except within 2⁻⁵⁹ r of a rounding midpoint, then 1 ulp off), no square root — and
+// d = r − R_ref as below; four points a step (AVX2 where the CPU has it: the same bits,
+// internal/isa.h) with Σ d² in four partial sums (point i into sum i mod 4, added as
+// (s₀ + s₁) + (s₂ + s₃), then the rest): one sequential sum was bound by the addition's
+// latency (~4 cycles a point) and the square root by its throughput. Against the square-root
+// evaluation below: RONt, RONp, RONv identical but for such a midpoint (≤ 1 ulp of r), RONq
+// in its last bits (the summation order; roundness_parameters_test). Otherwise
+// (a point beyond 2⁻⁹, a radius out of the kernel's range) the square-root evaluation (SSE2:
+// distances two at a time — the packet square root is the scalar one — extremes by packet
+// min/max; Σ d² in sequential order: bit for bit the scalar loop).
 #include "vcmm/geometry/roundness_parameters.h"
 
 #include <algorithm>
@@ -20,7 +30,10 @@
 #include <limits>
 #include <sstream>
 
+#include "internal/isa.h"
+#include "internal/near_circle.h"
 #include "internal/prevalidated.h"
+#include "internal/vec.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -37,6 +50,103 @@ constexpr const char* kCaller = "roundness_parameters";
 double distance(double dx, double dy) {
   const double r = std::sqrt(dx * dx + dy * dy);
   return std::isfinite(r) && r > 1e-150 ? r : std::hypot(dx, dy);
+}
+
+/// The near-circle evaluation (file comment) of r_max, r_min and Σ (d·inv_scale)², or false
+/// when some point has |s| > 2⁻⁹ (the caller then takes square roots).
+struct NearSums {
+  double r_max, r_min, sum_dd;
+};
+using V4 = internal::VecOf<4>::type;  // internal/vec.h
+using M4 = internal::VecOf<4>::mask;
+
+template <int kDegree>
+[[gnu::always_inline]] inline bool near_sums_body(const Point2* p, std::size_t n, Point2 c,
+                                                   double reference_radius, double inv_scale,
+                                                   const internal::NearCircle& k,
+                                                   NearSums& out) {
+  const double* xy = reinterpret_cast<const double*>(p);
+  const V4 cx = V4{} + c.x, cy = V4{} + c.y, r0 = V4{} + k.r0, inv = V4{} + inv_scale;
+  const V4 ref = V4{} + reference_radius;
+  V4 smax = V4{}, smin = V4{}, rmax = V4{} - std::numeric_limits<double>::infinity();
+  V4 rmin = V4{} + std::numeric_limits<double>::infinity(), sum = V4{};
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    V4 a, b;
+    __builtin_memcpy(&a, xy + 2 * i, sizeof a);      // x0 y0 x1 y1
+    __builtin_memcpy(&b, xy + 2 * i + 4, sizeof b);  // x2 y2 x3 y3
+    const V4 dx = __builtin_shuffle(a, b, M4{0, 4, 2, 6}) - cx;  // points 0, 2, 1, 3
+    const V4 dy = __builtin_shuffle(a, b, M4{1, 5, 3, 7}) - cy;
+    const V4 s = internal::near_circle_s(dx * dx + dy * dy, k);
+    const V4 off = internal::near_circle_offset<kDegree>(s, k);
+    smax = s > smax ? s : smax;  // q = +∞ (overflow) gives s = +∞: refused below
+    smin = s < smin ? s : smin;
+    const V4 r = r0 + off;
+    rmax = r > rmax ? r : rmax;
+    rmin = r < rmin ? r : rmin;
+    const V4 d = (r - ref) * inv;
+    sum += d * d;  // lanes: points i + 0, 2, 1, 3 (mod 4)
+  }
+  double s_max = std::max({smax[0], smax[1], smax[2], smax[3], -smin[0], -smin[1], -smin[2],
+                           -smin[3]});
+  double r_max = std::max(std::max(rmax[0], rmax[1]), std::max(rmax[2], rmax[3]));
+  double r_min = std::min(std::min(rmin[0], rmin[1]), std::min(rmin[2], rmin[3]));
+  // (s₀ + s₁) + (s₂ + s₃) by point residue: lanes 0, 2 hold residues 0, 1; lanes 1, 3: 2, 3.
+  double sum_dd = (sum[0] + sum[2]) + (sum[1] + sum[3]);
+  for (; i < n; ++i) {
+    const double dx = p[i].x - c.x, dy = p[i].y - c.y;
+    const double s = internal::near_circle_s(dx * dx + dy * dy, k);
+    const double off = internal::near_circle_offset<kDegree>(s, k);
+    s_max = std::max(s_max, std::fabs(s));
+    const double r = k.r0 + off;
+    r_max = std::max(r_max, r);
+    r_min = std::min(r_min, r);
+    const double d = (r - reference_radius) * inv_scale;
+    sum_dd += d * d;
+  }
+  if (!(s_max <= internal::near_circle_s_max(kDegree))) return false;  // also NaN
+  out = {r_max, r_min, sum_dd};
+  return true;
+}
+template <int kDegree>
+bool near_sums_baseline(const Point2* p, std::size_t n, Point2 c, double reference_radius,
+                        double inv_scale, const internal::NearCircle& k, NearSums& out) {
+  return near_sums_body<kDegree>(p, n, c, reference_radius, inv_scale, k, out);
+}
+#if VCMM_GEOMETRY_X86
+template <int kDegree>
+__attribute__((target("avx2"))) bool near_sums_avx2(const Point2* p, std::size_t n, Point2 c,
+                                                    double reference_radius, double inv_scale,
+                                                    const internal::NearCircle& k,
+                                                    NearSums& out) {
+  return near_sums_body<kDegree>(p, n, c, reference_radius, inv_scale, k, out);
+}
+#endif
+template <int kDegree>
+bool near_sums_of_degree(std::span<const Point2> points, Point2 c, double reference_radius,
+                         double inv_scale, const internal::NearCircle& k, NearSums& out) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx2())
+    return near_sums_avx2<kDegree>(points.data(), points.size(), c, reference_radius, inv_scale,
+                                   k, out);
+#endif
+  return near_sums_baseline<kDegree>(points.data(), points.size(), c, reference_radius,
+                                     inv_scale, k, out);
+}
+
+/// The near-circle sums about (c, reference_radius) when the kernel applies (the radius in
+/// its range, every |s| within the degree's range): the degree from the expected deviation
+/// bound (near_circle_degree_for), redone with degree 6 when a point leaves that range.
+bool near_sums(std::span<const Point2> points, Point2 c, double reference_radius,
+               double deviation_bound, double inv_scale, NearSums& out) {
+  const int degree = internal::near_circle_degree_for(reference_radius, deviation_bound);
+  if (degree == 0) return false;
+  const internal::NearCircle k = internal::near_circle_about(reference_radius);
+  if (degree == 3 && near_sums_of_degree<3>(points, c, reference_radius, inv_scale, k, out))
+    return true;
+  if (degree == 4 && near_sums_of_degree<4>(points, c, reference_radius, inv_scale, k, out))
+    return true;
+  return near_sums_of_degree<6>(points, c, reference_radius, inv_scale, k, out);
 }
 
 }  // namespace
@@ -60,7 +170,8 @@ RoundnessParameters roundness_parameters(std::span<const Point2> points, Point2 
 
 RoundnessParameters internal::roundness_parameters_of_valid(std::span<const Point2> points,
                                                             Point2 center,
-                                                            double reference_radius) {
+                                                            double reference_radius,
+                                                            double deviation_bound) {
   // d_i² is summed as (d_i·2^−e)² with 2^e the scale of the radius (an exact rescaling), so
   // RONq neither overflows for huge coordinates nor underflows for tiny ones.
   const double size = std::max(std::fabs(reference_radius),
@@ -68,6 +179,15 @@ RoundnessParameters internal::roundness_parameters_of_valid(std::span<const Poin
   const int e = size > 0.0 && std::isfinite(size) ? std::ilogb(size) : 0;
   const double inv_scale = std::ldexp(1.0, -e);  // multiplying by it is exact
   const std::size_t n = points.size();
+  NearSums near{};
+  if (near_sums(points, center, reference_radius, deviation_bound, inv_scale, near)) {
+    RoundnessParameters out;
+    out.ront = near.r_max - near.r_min;
+    out.ronp = std::max(0.0, near.r_max - reference_radius);
+    out.ronv = std::max(0.0, -(near.r_min - reference_radius));
+    out.ronq = std::ldexp(std::sqrt(near.sum_dd / static_cast<double>(n)), e);
+    return out;
+  }
   double r_max = distance(points[0].x - center.x, points[0].y - center.y), r_min = r_max;
   double sum_dd = 0.0;
   const auto add = [&](double r) {

@@ -52,6 +52,19 @@ TEST(CliSimulate, WritesAReadableMeasurementWithProvenance) {
   EXPECT_LT((r2 - 85.5).abs().maxCoeff(), 0.01);
 }
 
+// What `simulate` writes, `roundness` reads (its header names the x, y, z columns among the
+// normals): the LS radius is the simulated ring's, within the µm-level errors.
+TEST(CliSimulate, RoundnessReadsTheMeasurementItWrites) {
+  const fs::path out = scratch_dir() / "scan_for_roundness.csv";
+  ASSERT_EQ(run(base(out) + " --seed 5 --points 720").exit_code, 0);
+  const CliRun r = run("roundness --reference LS --json '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"n_points\": 720"), std::string::npos) << r.out;
+  const std::size_t at = r.out.find("\"radius\": ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_NEAR(std::stod(r.out.substr(at + 10)), 85.5, 0.01);
+}
+
 TEST(CliSimulate, SameSeedSameFileDifferentSeedDifferent) {
   const fs::path a = scratch_dir() / "a.csv", b = scratch_dir() / "b.csv",
                  c = scratch_dir() / "c.csv";

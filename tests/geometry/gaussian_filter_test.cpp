@@ -10,10 +10,12 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "support/test_profiles.h"
+#include "vcmm/geometry/angular_coverage.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/roundness.h"
@@ -639,3 +641,62 @@ TEST(OpenProfileFilter, GapsInsideTheArcAreRefusedAndEvaluateRoundnessChoosesIt)
 }
 
 }  // namespace
+
+// evaluate_roundness lets the closed filter decide "closed or open" where it can (its
+// nonuniform path sorts the angles angular_coverage takes; its FFT path cannot meet a gap
+// of 2 grid steps) and takes the coverage first otherwise (cut-offs near or above n/4).
+// Either way the choice must be the rule's: the open-profile filter exactly when the largest
+// gap about the raw LS centre exceeds λc/2 = π/f_c. Rings with one gap of k missing steps,
+// equiangular, jittered by up to 0.45 step, or perfectly round with one pair of neighbours
+// 1.9 steps apart (FFT or nonuniform path), cut-offs on both sides of the gap, of n/4 and of
+// n/3. Fixed seed.
+TEST(OpenProfileFilter, EvaluateRoundnessChoosesOpenExactlyByTheCoverageRule) {
+  std::mt19937_64 rng(1127);
+  std::uniform_real_distribution<double> jitter(-0.45, 0.45);
+  int open = 0, closed = 0;
+  for (std::size_t n : {60u, 200u, 361u}) {
+    for (std::size_t missing : {0u, 1u, 2u, 4u, 8u}) {
+      for (int variant = 0; variant < 3; ++variant) {
+        // 0: equiangular; 1: jittered; 2: a perfect circle (the FFT path's grid test then
+        // passes whatever the displacement) with two neighbours 0.45 step apart the other
+        // way: a gap of 1.9 steps on the FFT path.
+        const bool jittered = variant == 1;
+        std::vector<Point2> p;
+        const double step = 2 * std::numbers::pi / double(n);
+        for (std::size_t j = missing; j < n; ++j) {
+          double shift = jittered ? jitter(rng) : 0.0;
+          if (variant == 2 && j == n / 2) shift = -0.45;
+          if (variant == 2 && j == n / 2 + 1) shift = 0.45;
+          const double t = step * (double(j) + shift);
+          const double form = variant == 2 ? 0.0 : 2e-3 * std::cos(3 * t) + 1e-3 * std::sin(5 * t);
+          const double r = 40.0 + form;
+          p.push_back({100.0 + r * std::cos(t), -50.0 + r * std::sin(t)});
+        }
+        const Point2 c = vcmm::geometry::least_squares_circle(p).center;
+        const double gap = vcmm::geometry::angular_coverage(p, c).largest_gap_rad;
+        for (double cutoff : {2.0, 5.0, 15.0, double(n) / 4.0 - 1.0, double(n) / 4.0,
+                              double(n) / 4.0 + 1.0, double(n) / 3.6, double(n) / 3.0,
+                              double(n) / 3.0 + 1.0, double(n - missing) / 2.0}) {
+          const std::string what = "n " + std::to_string(n) + " missing " +
+                                   std::to_string(missing) + " variant " +
+                                   std::to_string(variant) + " cut-off " + std::to_string(cutoff);
+          const bool want_open = gap > std::numbers::pi / cutoff;
+          vcmm::geometry::RoundnessRequest request;
+          request.filter_cutoff_upr = cutoff;
+          request.maximum_inscribed = request.minimum_circumscribed = false;
+          try {
+            const auto e = vcmm::geometry::evaluate_roundness(p, request);
+            ASSERT_TRUE(e.filter_path.has_value()) << what;
+            EXPECT_EQ(*e.filter_path == FilterPath::open_profile, want_open) << what;
+            (want_open ? open : closed) += 1;
+          } catch (const InvalidInput& e) {
+            // Only the open filter may refuse such a ring (e.g. a cut-off too high for it).
+            EXPECT_TRUE(want_open) << what << ": " << e.what();
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(open, 10);
+  EXPECT_GT(closed, 10);
+}

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "support/filtered_least_squares.h"
 #include "support/test_profiles.h"
 #include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
@@ -96,26 +97,7 @@ TEST(GaussianFilterSharedLeastSquares, BitForBitTheSameAsFittingItAgain) {
   EXPECT_EQ(gaussian_filtered_profile(closed, 50).path, FilterPath::fft);
 }
 
-/// The filtered profile's LS circle from the filter against the full fit of its points:
-/// centre and radius within `tol` mm, RONt/RONp/RONv/RONq within `tol`; the contacts are the
-/// same points or points whose residuals differ by at most `tol`.
-void expect_same_least_squares(const LeastSquaresCircle& on_rays,
-                               const std::vector<Point2>& filtered, double tol) {
-  const LeastSquaresCircle full = least_squares_circle(filtered);
-  EXPECT_NEAR(on_rays.center.x, full.center.x, tol);
-  EXPECT_NEAR(on_rays.center.y, full.center.y, tol);
-  EXPECT_NEAR(on_rays.radius, full.radius, tol);
-  EXPECT_NEAR(on_rays.ron.ront, full.ron.ront, tol);
-  EXPECT_NEAR(on_rays.ron.ronp, full.ron.ronp, tol);
-  EXPECT_NEAR(on_rays.ron.ronv, full.ron.ronv, tol);
-  EXPECT_NEAR(on_rays.ron.ronq, full.ron.ronq, tol);
-  ASSERT_EQ(on_rays.contacts.size(), 2u);
-  const auto residual = [&](std::size_t i) {
-    return std::hypot(filtered[i].x - full.center.x, filtered[i].y - full.center.y) - full.radius;
-  };
-  for (std::size_t k = 0; k < 2; ++k)
-    EXPECT_NEAR(residual(on_rays.contacts[k]), residual(full.contacts[k]), tol) << k;
-}
+using vcmm::test::expect_same_least_squares;
 
 TEST(GaussianFilterIntoCallersProfile, SamePointsAndTheFilteredLeastSquaresCircle) {
   const PathProfiles p;

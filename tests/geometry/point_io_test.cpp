@@ -94,9 +94,42 @@ TEST(ReadPointsCsv, ReadsEveryLineEnd) {
 TEST(ReadPointsCsv, RejectsGarbageAndWrongColumnCounts) {
   EXPECT_EQ(error_of("1,2\n3,abc\n"), "p.csv:2: field 2 is not a number ('abc')");
   EXPECT_EQ(error_of("1,2\n3\n"), "p.csv:2: expected 2 or 3 fields (x,y or x,y,z in mm), found 1");
-  EXPECT_EQ(error_of("1,2,3,4\n"), "p.csv:1: expected 2 or 3 fields (x,y or x,y,z in mm), found 4");
+  EXPECT_EQ(error_of("1,2,3,4\n"),
+            "p.csv:1: expected 2 or 3 fields (x,y or x,y,z in mm), found 4 (more columns need "
+            "a header naming x and y: x or x_mm, y or y_mm)");
+  // A header that names no x and y columns picks nothing: the plain rule applies.
+  EXPECT_EQ(error_of("a,b,c,d\n1,2,3,4\n"),
+            "p.csv:2: expected 2 or 3 fields (x,y or x,y,z in mm), found 4 (more columns need "
+            "a header naming x and y: x or x_mm, y or y_mm)");
   EXPECT_EQ(error_of("1,2\n1,2,3\n"), "p.csv:2: has 3 fields but the first data line has 2");
   EXPECT_EQ(error_of("1,2\n,2\n"), "p.csv:2: field 1 is not a number ('')");
+}
+
+// A header naming its columns picks them: the measurement CSV `vcmm simulate` writes (x, y, z
+// and the normals), reordered columns, any case, other fields not read; the header's count
+// is every line's count and errors name the field's own column.
+TEST(ReadPointsCsv, HeaderNamingColumnsPicksThem) {
+  const PointTable m = read(
+      "# vcmm measurement\n# format: vcmm.measurement 1\nx_mm,y_mm,z_mm,nx,ny,nz\n"
+      "85.5,-0.25,0.5,-1,0,0\n0.125,85.5,0.75,0,-1,0\n");
+  ASSERT_EQ(m.points.size(), 2u);
+  EXPECT_EQ(m.points[0].x, 85.5);
+  EXPECT_EQ(m.points[0].y, -0.25);
+  EXPECT_EQ(m.points[1].x, 0.125);
+  EXPECT_EQ(m.z, (std::vector<double>{0.5, 0.75}));
+  EXPECT_EQ(m.line, (std::vector<std::size_t>{4, 5}));
+  const PointTable r = read("label;Y;X\nP1;2;1\nP2;4;3\n");
+  ASSERT_EQ(r.points.size(), 2u);
+  EXPECT_EQ(r.points[1].x, 3.0);
+  EXPECT_EQ(r.points[1].y, 4.0);
+  EXPECT_TRUE(r.z.empty());
+  // Reordered within three columns (y, x, z) is picked by name too.
+  const PointTable o = read("y,x,z\n2,1,7\n");
+  EXPECT_EQ(o.points[0].x, 1.0);
+  EXPECT_EQ(o.points[0].y, 2.0);
+  EXPECT_EQ(o.z, (std::vector<double>{7.0}));
+  EXPECT_EQ(error_of("x,y,nx\n1,2,0\n1,2\n"), "p.csv:3: has 2 fields but the header has 3");
+  EXPECT_EQ(error_of("nx,x_mm,y_mm\n0,1,nan\n"), "p.csv:2: field 3 is not finite ('nan')");
 }
 
 TEST(ReadPointsCsv, MissingFileIsAClearError) {

@@ -17,11 +17,14 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "internal/isa.h"
+#include "support/filtered_least_squares.h"
 #include "support/test_profiles.h"
 #include "vcmm/geometry/certificate.h"
 #include "vcmm/geometry/gaussian_filter.h"
@@ -244,10 +247,55 @@ TEST_P(RoundnessProperties, EvaluateRoundnessWithAndWithoutFilter) {
   EXPECT_TRUE(vi.valid) << vi.reason;
   const auto vc = verify(fp, *filtered.minimum_circumscribed);
   EXPECT_TRUE(vc.valid) << vc.reason;
+  // LS of the filtered profile: the filter's one-step circle on its rays (or the full fit
+  // where that step is not exact) — the full fit of the filtered points to a few ulps of the
+  // coordinates, with the same structure (2 contacts, all four parameters).
+  double scale = 0.0;
+  for (const Point2& q : fp) scale = std::max({scale, std::fabs(q.x), std::fabs(q.y)});
+  vcmm::test::expect_same_least_squares(*filtered.least_squares, fp,
+                                        16.0 * std::numeric_limits<double>::epsilon() * scale);
+  EXPECT_GE(filtered.least_squares->iterations, 1);
   EXPECT_LE(filtered.minimum_zone->ron.ront, filtered.least_squares->ron.ront + 1e-12);
   // The filter is a positive-weight smoothing of the deviations about the LS centre: their
   // peak-to-valley can only shrink, and the MZ zone is at most that.
   EXPECT_LE(filtered.minimum_zone->ron.ront, plain.least_squares->ron.ront + 1e-12);
+}
+
+// The vectorised kernels (internal/isa.h: filter, FFT, distance scans, MZ containment map)
+// run the same operations in both ISA variants: the whole evaluation, filtered and not, is
+// bit for bit the same with the baseline variant forced.
+TEST_P(RoundnessProperties, EvaluateRoundnessIsTheSameInEveryIsaVariant) {
+  const Profile& p = profile();
+  SCOPED_TRACE(p.name);
+  for (double cutoff : {0.0, std::min(50.0, static_cast<double>(p.pts.size()) / 2 - 1)}) {
+    RoundnessRequest request;
+    if (cutoff > 0.0) request.filter_cutoff_upr = cutoff;
+    const RoundnessEvaluation a = evaluate_roundness(p.pts, request);
+    vcmm::geometry::internal::ForceBaselineIsa baseline;
+    const RoundnessEvaluation b = evaluate_roundness(p.pts, request);
+    EXPECT_EQ(a.filtered_points, b.filtered_points) << cutoff;
+    ASSERT_TRUE(a.least_squares && b.least_squares && a.minimum_zone && b.minimum_zone &&
+                a.maximum_inscribed && b.maximum_inscribed && a.minimum_circumscribed &&
+                b.minimum_circumscribed);
+    const auto same_ron = [&](const RoundnessParameters& x, const RoundnessParameters& y,
+                              const char* what) {
+      EXPECT_EQ(x.ront, y.ront) << what << " " << cutoff;
+      EXPECT_EQ(x.ronp, y.ronp) << what << " " << cutoff;
+      EXPECT_EQ(x.ronv, y.ronv) << what << " " << cutoff;
+      EXPECT_EQ(x.ronq, y.ronq) << what << " " << cutoff;
+    };
+    same_ron(a.least_squares->ron, b.least_squares->ron, "LS");
+    same_ron(a.minimum_zone->ron, b.minimum_zone->ron, "MZ");
+    same_ron(a.maximum_inscribed->ron, b.maximum_inscribed->ron, "MI");
+    same_ron(a.minimum_circumscribed->ron, b.minimum_circumscribed->ron, "MC");
+    EXPECT_EQ(a.least_squares->center, b.least_squares->center) << cutoff;
+    EXPECT_EQ(a.minimum_zone->center, b.minimum_zone->center) << cutoff;
+    EXPECT_EQ(a.minimum_zone->outer_contacts, b.minimum_zone->outer_contacts) << cutoff;
+    EXPECT_EQ(a.minimum_zone->inner_contacts, b.minimum_zone->inner_contacts) << cutoff;
+    EXPECT_EQ(a.maximum_inscribed->contacts, b.maximum_inscribed->contacts) << cutoff;
+    EXPECT_EQ(a.minimum_circumscribed->contacts, b.minimum_circumscribed->contacts) << cutoff;
+    EXPECT_EQ(a.coverage.largest_gap_rad, b.coverage.largest_gap_rad) << cutoff;
+  }
 }
 
 // Harder shapes: partial arcs (MI undefined there, MZ always has a finite minimum for

@@ -18,6 +18,7 @@
 
 #include <gmpxx.h>
 
+#include "internal/distance_scan.h"
 #include "internal/exact.h"
 #include "internal/precise_distance.h"
 #include "vcmm/geometry/point.h"
@@ -95,41 +96,6 @@ struct ExactCircle {
  private:
   mutable std::optional<PreciseCircle> precise_;
 };
-
-/// One O(n) pass about c over D̃ = fl(X² + Y²), X = fl(px − cx)·scale, Y likewise: the
-/// nearest (kNearest) or the farthest (kFarthest) point (lowest index on ties) and,
-/// appended to `flagged`, every index with D̃ ≥ threshold (kNearest: candidates outside a
-/// circle) or D̃ ≤ threshold (kFarthest: candidates inside). ~1-2 ns per point.
-enum class Track { kNearest, kFarthest };
-struct DistanceScan {
-  double d2 = 0.0;        ///< the extreme D̃ (scaled units)
-  std::size_t index = 0;  ///< its point
-};
-template <Track kTrack>
-DistanceScan scan_distances(std::span<const Point2> points, Point2 c, double scale,
-                            double threshold, std::vector<std::size_t>& flagged) {
-  constexpr bool kMin = kTrack == Track::kNearest;
-  double best = kMin ? std::numeric_limits<double>::infinity() : -1.0;
-  std::size_t arg = 0;
-  const Point2* p = points.data();
-  const std::size_t n = points.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double dx = (p[i].x - c.x) * scale, dy = (p[i].y - c.y) * scale;
-    const double d2 = dx * dx + dy * dy;
-    if (kMin ? d2 < best : d2 > best) [[unlikely]] {
-      best = d2;
-      arg = i;
-#if defined(__GNUC__)
-      // Keep a real, well-predicted branch: if-converted to conditional moves, every
-      // iteration would wait on the previous extreme (measured 1.7× slower).
-      asm volatile("" ::: "memory");
-#endif
-    }
-    if (kMin ? d2 >= threshold : d2 <= threshold) [[unlikely]]
-      flagged.push_back(i);
-  }
-  return {best, arg};
-}
 
 /// D̃ of one point, as computed by scan_distances.
 inline double scaled_distance2(Point2 p, Point2 c, double scale) {

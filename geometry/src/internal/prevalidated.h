@@ -5,8 +5,10 @@
 // call. Not part of the public API.
 #pragma once
 
+#include <limits>
 #include <span>
 
+#include "vcmm/geometry/gaussian_filter.h"
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/maximum_inscribed.h"
 #include "vcmm/geometry/minimum_circumscribed.h"
@@ -31,8 +33,26 @@ MaximumInscribedCircle fit_maximum_inscribed_circle(std::span<const Point2> poin
 MinimumCircumscribedCircle fit_minimum_circumscribed_circle(std::span<const Point2> points);
 
 /// roundness_parameters(points, center, reference_radius) without its checks.
-/// Precondition (not checked): ≥ 1 finite point, finite centre and radius.
-RoundnessParameters roundness_parameters_of_valid(std::span<const Point2> points,
-                                                  Point2 center, double reference_radius);
+/// deviation_bound: the largest |r_i − R| expected (e.g. the circle's RONt), which picks the
+/// degree of the near-circle series (roundness_parameters.cpp; a wrong or unknown (NaN) bound
+/// costs time, never accuracy). Precondition (not checked): ≥ 1 finite point, finite centre
+/// and radius.
+RoundnessParameters roundness_parameters_of_valid(
+    std::span<const Point2> points, Point2 center, double reference_radius,
+    double deviation_bound = std::numeric_limits<double>::quiet_NaN());
+
+/// gaussian_filtered_profile(points, cutoff_upr, least_squares, out, filtered_least_squares)
+/// without validate_profile, and false instead of its "profile is not closed" InvalidInput
+/// (`out` is then unusable): the closed filter, or the verdict that the profile has an
+/// angular gap wider than λc/2 — found on the nonuniform path by the filter's own sorted
+/// angles (the gaps angular_coverage takes, bit for bit). The FFT path tests no gap: its
+/// rays are each less than half a step off an equiangular grid, so neighbours are less than
+/// 2 grid steps apart (4π/(n − 1) for a repeated closing point). Precondition (not
+/// checked): the points passed validate_profile(points, 8, …); the other checks (cut-off,
+/// circle) throw as there.
+bool filter_closed_profile_if_closed(std::span<const Point2> points, double cutoff_upr,
+                                     const LeastSquaresCircle& least_squares,
+                                     FilteredProfile& out,
+                                     LeastSquaresCircle* filtered_least_squares);
 
 }  // namespace vcmm::geometry::internal

@@ -2,8 +2,12 @@
 //
 // Format: one point a line, `x,y` or `x,y,z` (mm; z is read and ignored by the 2D
 // evaluation), separators ',' (optionally surrounded by blanks), or ';' / tab / blanks.
-// A first line that does not parse as numbers is a header. `#` starts a comment; blank lines
-// are skipped. Non-finite values (nan, inf) are errors.
+// A first line that does not parse as numbers is a header. A header that names its x and y
+// columns (`x` or `x_mm`, `y` or `y_mm`, optionally `z`/`z_mm`; any case) in another layout —
+// more columns (e.g. `x_mm,y_mm,z_mm,nx,ny,nz`, a `vcmm simulate` measurement) or another
+// order — picks those columns; every data line then has the header's field count and the
+// other fields are not read. `#` starts a comment; blank lines are skipped. Non-finite values
+// (nan, inf) are errors.
 #pragma once
 
 #include <istream>

@@ -1,0 +1,192 @@
+// internal/distance_scan.cpp — the passes of internal/distance_scan.h.
+//
+// Eight points a step in GCC vector types of four doubles (one AVX2 register, or two SSE2
+// ones in the baseline variant), as two groups of four with their own per-lane extremes (two
+// independent compare-and-select chains: one chain bounds a loop to its ~6-cycle latency per
+// group). Per group, two loads of interleaved (x, y) pairs are unpacked into x and y of points
+// (0, 2, 1, 3) of the group — the lane order of the unpack instructions, kept throughout (the
+// lane indices say which point a lane holds). The squared distance per lane is the scalar
+// expression (no FMA: -ffp-contract=off), each lane keeps its extreme and the index of its
+// first occurrence by strict comparisons, the eight lanes are merged with ties to the lowest
+// index, then the < 8 remaining points run scalar: the plain loop's result, whichever variant
+// runs. Flags: one mask test per step, the rare set bits pushed in point order.
+#include "internal/distance_scan.h"
+
+#include <cstdint>
+#include <limits>
+
+#include "internal/isa.h"
+#include "internal/vec.h"
+
+namespace vcmm::geometry::internal {
+namespace {
+
+using V4 = VecOf<4>::type;  // internal/vec.h
+using M4 = VecOf<4>::mask;
+
+/// Whether any lane of a comparison mask is set: the lanes OR-ed by two shuffles, one
+/// extraction (three extractions cost more in the loop).
+[[gnu::always_inline]] inline bool any_lane(M4 m) {
+  const M4 h = m | __builtin_shuffle(m, M4{2, 3, 0, 1});
+  return (h | __builtin_shuffle(h, M4{1, 0, 3, 2}))[0] != 0;
+}
+
+/// What a pass tracks: the smallest and/or the largest value; flags: none, D̃ ≥ threshold
+/// (+1) or D̃ ≤ threshold (−1); kScaled: the differences are multiplied by `scale` (else the
+/// scale is 1 and the products, exact, are skipped).
+template <bool kMin, bool kMax, int kFlag, bool kScaled>
+struct Pass {
+  static constexpr double kNoMin = std::numeric_limits<double>::infinity();
+  static constexpr double kNoMax = -1.0;
+  struct Out {
+    double smin = kNoMin, smax = kNoMax;
+    std::size_t imin = 0, imax = 0;
+  };
+
+  [[gnu::always_inline]] static inline Out run(const Point2* p, std::size_t lo, std::size_t hi,
+                                               Point2 c, double scale, double threshold,
+                                               std::vector<std::size_t>* flagged) {
+    static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
+    const double* xy = reinterpret_cast<const double*>(p);
+    const V4 cx = {c.x, c.x, c.x, c.x}, cy = {c.y, c.y, c.y, c.y};
+    const V4 s = {scale, scale, scale, scale};
+    const V4 t = {threshold, threshold, threshold, threshold};
+    const auto l = static_cast<std::int64_t>(lo);
+    const M4 eight = {8, 8, 8, 8};
+    M4 at[2] = {M4{0, 2, 1, 3} + l, M4{4, 6, 5, 7} + l};  // the point of each lane
+    V4 bmin[2] = {V4{} + kNoMin, V4{} + kNoMin}, bmax[2] = {V4{} + kNoMax, V4{} + kNoMax};
+    M4 amin[2] = {at[0], at[1]}, amax[2] = {at[0], at[1]};
+    std::size_t i = lo;
+    for (; i + 8 <= hi; i += 8) {
+      M4 flag[2];
+      for (int h = 0; h < 2; ++h) {
+        V4 a, b;
+        __builtin_memcpy(&a, xy + 2 * i + 8 * h, sizeof a);      // x0 y0 x1 y1
+        __builtin_memcpy(&b, xy + 2 * i + 8 * h + 4, sizeof b);  // x2 y2 x3 y3
+        const V4 x = __builtin_shuffle(a, b, M4{0, 4, 2, 6});   // x0 x2 x1 x3
+        const V4 y = __builtin_shuffle(a, b, M4{1, 5, 3, 7});   // y0 y2 y1 y3
+        V4 dx = x - cx, dy = y - cy;
+        if constexpr (kScaled) {
+          dx *= s;
+          dy *= s;
+        }
+        const V4 d2 = dx * dx + dy * dy;
+        if constexpr (kMin) {
+          const M4 better = d2 < bmin[h];
+          bmin[h] = better ? d2 : bmin[h];
+          amin[h] = better ? at[h] : amin[h];
+        }
+        if constexpr (kMax) {
+          const M4 better = d2 > bmax[h];
+          bmax[h] = better ? d2 : bmax[h];
+          amax[h] = better ? at[h] : amax[h];
+        }
+        if constexpr (kFlag > 0) flag[h] = d2 >= t;
+        if constexpr (kFlag < 0) flag[h] = d2 <= t;
+      }
+      if constexpr (kFlag != 0) {
+        if (any_lane(flag[0] | flag[1])) [[unlikely]] {
+          for (int h = 0; h < 2; ++h)
+            for (int k : {0, 2, 1, 3})  // lanes in point order
+              if (flag[h][k] != 0) flagged->push_back(static_cast<std::size_t>(at[h][k]));
+        }
+      }
+      at[0] += eight;
+      at[1] += eight;
+    }
+    Out out;
+    for (int h = 0; h < 2 && i > lo; ++h)
+      for (int k = 0; k < 4; ++k) {
+        if constexpr (kMin) {
+          const auto index = static_cast<std::size_t>(amin[h][k]);
+          const double v = bmin[h][k];
+          if (v < out.smin || (v == out.smin && index < out.imin)) {
+            out.smin = v;
+            out.imin = index;
+          }
+        }
+        if constexpr (kMax) {
+          const auto index = static_cast<std::size_t>(amax[h][k]);
+          const double v = bmax[h][k];
+          if (v > out.smax || (v == out.smax && index < out.imax)) {
+            out.smax = v;
+            out.imax = index;
+          }
+        }
+      }
+    if (i == lo) out.imin = out.imax = lo;  // no whole step: the plain loop's start
+    for (; i < hi; ++i) {
+      const double dx = (p[i].x - c.x) * scale, dy = (p[i].y - c.y) * scale;
+      const double d2 = dx * dx + dy * dy;
+      if (kMin && d2 < out.smin) {
+        out.smin = d2;
+        out.imin = i;
+      }
+      if (kMax && d2 > out.smax) {
+        out.smax = d2;
+        out.imax = i;
+      }
+      if (kFlag > 0 && d2 >= threshold) flagged->push_back(i);
+      if (kFlag < 0 && d2 <= threshold) flagged->push_back(i);
+    }
+    return out;
+  }
+};
+
+using NearestPass = Pass<true, false, +1, true>;
+using FarthestPass = Pass<false, true, -1, true>;
+using ExtremesPass = Pass<true, true, 0, false>;
+
+// Each pass compiled for the baseline ISA and for AVX2 (chosen per call, internal/isa.h):
+// the same element-wise operations in the same order, so the same results.
+template <class P>
+typename P::Out run_baseline(const Point2* p, std::size_t lo, std::size_t hi, Point2 c,
+                             double scale, double threshold, std::vector<std::size_t>* flagged) {
+  return P::run(p, lo, hi, c, scale, threshold, flagged);
+}
+#if VCMM_GEOMETRY_X86
+template <class P>
+__attribute__((target("avx2"))) typename P::Out run_avx2(const Point2* p, std::size_t lo,
+                                                         std::size_t hi, Point2 c,
+                                                         double scale, double threshold,
+                                                         std::vector<std::size_t>* flagged) {
+  return P::run(p, lo, hi, c, scale, threshold, flagged);
+}
+#endif
+template <class P>
+typename P::Out run(const Point2* p, std::size_t lo, std::size_t hi, Point2 c, double scale,
+                    double threshold, std::vector<std::size_t>* flagged) {
+#if VCMM_GEOMETRY_X86
+  if (use_avx2()) return run_avx2<P>(p, lo, hi, c, scale, threshold, flagged);
+#endif
+  return run_baseline<P>(p, lo, hi, c, scale, threshold, flagged);
+}
+
+}  // namespace
+
+template <Track kTrack>
+DistanceScan scan_distances(std::span<const Point2> points, Point2 c, double scale,
+                            double threshold, std::vector<std::size_t>& flagged) {
+  if constexpr (kTrack == Track::kNearest) {
+    const auto o = run<NearestPass>(points.data(), 0, points.size(), c, scale, threshold,
+                                    &flagged);
+    return {o.smin, o.imin};
+  } else {
+    const auto o = run<FarthestPass>(points.data(), 0, points.size(), c, scale, threshold,
+                                     &flagged);
+    return {o.smax, o.imax};
+  }
+}
+
+template DistanceScan scan_distances<Track::kNearest>(std::span<const Point2>, Point2, double,
+                                                      double, std::vector<std::size_t>&);
+template DistanceScan scan_distances<Track::kFarthest>(std::span<const Point2>, Point2, double,
+                                                       double, std::vector<std::size_t>&);
+
+DistanceExtremes distance_extremes(std::span<const Point2> points, std::size_t lo,
+                                   std::size_t hi, Point2 c) {
+  const auto o = run<ExtremesPass>(points.data(), lo, hi, c, 1.0, 0.0, nullptr);
+  return {o.imax, o.imin, o.smax, o.smin};
+}
+
+}  // namespace vcmm::geometry::internal

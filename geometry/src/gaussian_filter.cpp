@@ -517,9 +517,13 @@ void check_filter_parameters(std::span<const Point2> points, double cutoff_upr,
   }
 }
 
+/// points_validated: the caller vouches that the points passed least_squares_circle's check
+/// (gaussian_filter.h); then only the count is checked here, not every point (the filter's
+/// off-series branch checks them in full).
 void check_filter_input(std::span<const Point2> points, double cutoff_upr, const char* caller,
-                        const LeastSquaresCircle* least_squares = nullptr) {
-  validate_profile(points, 8, caller);
+                        const LeastSquaresCircle* least_squares = nullptr,
+                        bool points_validated = false) {
+  if (!points_validated || points.size() < 8) validate_profile(points, 8, caller);
   check_filter_parameters(points, cutoff_upr, caller, least_squares);
 }
 
@@ -830,10 +834,7 @@ LeastSquaresCircle gaussian_filtered_least_squares_circle(std::span<const Point2
                                                           const LeastSquaresCircle& least_squares,
                                                           bool points_validated) {
   constexpr const char* kCaller = "gaussian_filtered_profile";
-  if (points_validated && points.size() >= 8)
-    check_filter_parameters(points, cutoff_upr, kCaller, &least_squares);
-  else
-    check_filter_input(points, cutoff_upr, kCaller, &least_squares);
+  check_filter_input(points, cutoff_upr, kCaller, &least_squares, points_validated);
   thread_local FilteredProfile out;  // the points, formed only for the full fit
   LeastSquaresCircle filtered;
   filter_any_order(points, cutoff_upr, least_squares, FilterPathChoice::automatic, kCaller, out,
@@ -844,9 +845,9 @@ LeastSquaresCircle gaussian_filtered_least_squares_circle(std::span<const Point2
 void gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
                                const LeastSquaresCircle& least_squares, FilteredProfile& out,
                                LeastSquaresCircle* filtered_least_squares,
-                               FilterPathChoice choice) {
+                               FilterPathChoice choice, bool points_validated) {
   constexpr const char* kCaller = "gaussian_filtered_profile";
-  check_filter_input(points, cutoff_upr, kCaller, &least_squares);
+  check_filter_input(points, cutoff_upr, kCaller, &least_squares, points_validated);
   filter_any_order(points, cutoff_upr, least_squares, choice, kCaller, out,
                    filtered_least_squares);
 }

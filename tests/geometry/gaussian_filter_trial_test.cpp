@@ -197,6 +197,10 @@ TEST(GaussianFilteredLeastSquaresCircle, BitForBitTheCircleOfTheProfileOverload)
         expect_same_bits(
             vcmm::geometry::gaussian_filtered_least_squares_circle(*pts, fc, ls, true),
             expected);
+        FilteredProfile vouched;
+        gaussian_filtered_profile(*pts, fc, ls, vouched, nullptr, FilterPathChoice::automatic,
+                                  /*points_validated=*/true);
+        expect_identical(vouched, f);
       }
     }
   }
@@ -211,13 +215,20 @@ TEST(GaussianFilteredLeastSquaresCircle, BadPointsStillNamedWhenTheCallerVouches
   const LeastSquaresCircle ls = least_squares_circle(good);
   auto expect_invalid = [&](const std::vector<Point2>& pts, double fc,
                             const std::string& fragment) {
-    try {
-      vcmm::geometry::gaussian_filtered_least_squares_circle(pts, fc, ls, true);
-      ADD_FAILURE() << "expected InvalidInput mentioning '" << fragment << "'";
-    } catch (const InvalidInput& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find("gaussian_filtered_profile"), std::string::npos) << what;
-      EXPECT_NE(what.find(fragment), std::string::npos) << what;
+    for (int entry = 0; entry < 2; ++entry) {
+      try {
+        if (entry == 0) {
+          vcmm::geometry::gaussian_filtered_least_squares_circle(pts, fc, ls, true);
+        } else {
+          FilteredProfile f;
+          gaussian_filtered_profile(pts, fc, ls, f, nullptr, FilterPathChoice::automatic, true);
+        }
+        ADD_FAILURE() << "expected InvalidInput mentioning '" << fragment << "'";
+      } catch (const InvalidInput& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("gaussian_filtered_profile"), std::string::npos) << what;
+        EXPECT_NE(what.find(fragment), std::string::npos) << what;
+      }
     }
   };
   std::vector<Point2> bad = good;

@@ -69,7 +69,8 @@ RingMeasurands evaluate_ring(std::span<const geometry::Point2> profile,
     // per-thread profile (a Monte Carlo run allocates no points per trial). With the LS
     // reference only the LS circle of the filter's output is needed: one step on its rays
     // instead of a second fit (the same circle to ~1e-14 mm), without forming the points, and
-    // without checking the points again (least_squares_circle has; gaussian_filter.h).
+    // without checking the points again (least_squares_circle has; gaussian_filter.h; the
+    // other references skip that check too).
     thread_local geometry::FilteredProfile filtered;
     if (options.reference == ReferenceCircle::least_squares) {
       out.roundness_mm = geometry::gaussian_filtered_least_squares_circle(
@@ -81,7 +82,9 @@ RingMeasurands evaluate_ring(std::span<const geometry::Point2> profile,
       // proven to decide the circle of all points: RONt bit for bit minimum_zone_circle's and
       // maximum_inscribed_circle's (*_from_extremes.h), at a fraction of the full fit's cost.
       thread_local geometry::ExtremesScratch extremes;
-      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered);
+      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered,
+                                          nullptr, geometry::FilterPathChoice::automatic,
+                                          /*points_validated=*/true);
       out.roundness_mm =
           options.reference == ReferenceCircle::minimum_zone
               ? geometry::minimum_zone_ront_from_extremes(filtered.points,
@@ -89,7 +92,9 @@ RingMeasurands evaluate_ring(std::span<const geometry::Point2> profile,
               : geometry::maximum_inscribed_ront_from_extremes(filtered.points,
                                                                filtered.filter_center, extremes);
     } else {
-      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered);
+      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered,
+                                          nullptr, geometry::FilterPathChoice::automatic,
+                                          /*points_validated=*/true);
       out.roundness_mm = fit_reference(filtered.points, options.reference).ront;
     }
   } else {

@@ -85,11 +85,14 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
 /// least_squares_circle(out.points): the same circle to ~1e-14 mm (the rounding of the output
 /// points; iterations = 1), and the same contacts except between residuals equal to that
 /// level (tests/geometry/gaussian_filter_trial_test.cpp). `out.points` equals the other overload's
-/// output bit for bit. Preconditions and exceptions: as above.
+/// output bit for bit. Preconditions and exceptions: as above. `points_validated`: as for
+/// gaussian_filtered_least_squares_circle below (true only for points that have just passed
+/// least_squares_circle; the same result, one O(n) check less).
 void gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
                                const LeastSquaresCircle& least_squares, FilteredProfile& out,
                                LeastSquaresCircle* filtered_least_squares = nullptr,
-                               FilterPathChoice choice = FilterPathChoice::automatic);
+                               FilterPathChoice choice = FilterPathChoice::automatic,
+                               bool points_validated = false);
 
 /// The least-squares circle of the filtered profile alone: *filtered_least_squares of the
 /// overload above, bit for bit, without forming the filtered points where the one step on the

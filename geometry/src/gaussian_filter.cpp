@@ -517,9 +517,13 @@ void check_filter_parameters(std::span<const Point2> points, double cutoff_upr,
   }
 }
 
+/// points_validated: the caller vouches that the points passed least_squares_circle's check
+/// (gaussian_filter.h); then only the count is checked here, not every point (the filter's
+/// off-series branch checks them in full).
 void check_filter_input(std::span<const Point2> points, double cutoff_upr, const char* caller,
-                        const LeastSquaresCircle* least_squares = nullptr) {
-  validate_profile(points, 8, caller);
+                        const LeastSquaresCircle* least_squares = nullptr,
+                        bool points_validated = false) {
+  if (!points_validated || points.size() < 8) validate_profile(points, 8, caller);
   check_filter_parameters(points, cutoff_upr, caller, least_squares);
 }
 
@@ -610,11 +614,13 @@ SetupVerdict setup_pass(int degree, const SetupPass& p, Eigen::Index count,
 /// deviation_bound: the largest |r_i − R| expected (RONt of the LS circle), which picks the
 /// degree of the distance series (a wrong value costs time, never accuracy). With
 /// `not_closed` given, a profile that is not closed sets it (and leaves `out` unusable)
-/// instead of throwing.
+/// instead of throwing. form_points false (with filtered_ls): `out.points` is left empty
+/// when the FFT path was taken and the one step on the rays gave *filtered_ls (the caller
+/// wants only that circle).
 void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 center,
                   double radius, double deviation_bound, FilterPathChoice choice,
                   const char* caller, FilteredProfile& out, LeastSquaresCircle* filtered_ls,
-                  bool* not_closed = nullptr) {
+                  bool* not_closed = nullptr, bool form_points = true) {
   const std::size_t n = points.size();
   out.filter_center = center;
   out.mean_radius = radius;
@@ -659,7 +665,11 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
   }
   const bool series = !verdict.off_series;
   if (!series) {
-    // The direct formulas (the rays too: no series pass may have run).
+    // Points off the series' range (rare on roundness data) or not finite: the full check of
+    // the points first (a caller may have skipped it, gaussian_filtered_least_squares_circle),
+    // which names a non-finite point; then the direct formulas (the rays too: no series pass
+    // may have run).
+    validate_profile(points, 8, caller);
     for (Eigen::Index i = 0; i < count; ++i) {
       v.x[i] = points[static_cast<std::size_t>(i)].x - cx;
       v.y[i] = points[static_cast<std::size_t>(i)].y - cy;
@@ -711,6 +721,19 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
     v.filtered = Eigen::Map<const Eigen::ArrayXd>(f.data(), count);
   }
 
+  // Output point i is c + (R + w_i) u_i on input ray i: its LS circle in one step from c
+  // (least_squares.cpp, "Points on rays"); the full fit of the points where that step is not
+  // exact.
+  std::optional<LeastSquaresCircle> ls;
+  if (filtered_ls) {
+    ls = internal::least_squares_circle_on_rays(center, radius, v.filtered.data(), v.x.data(),
+                                                v.y.data(), v.inv_r.data(), n);
+    if (ls && !form_points && out.path == FilterPath::fft) {
+      *filtered_ls = std::move(*ls);
+      out.points.clear();
+      return;
+    }
+  }
   // q_i = p_i + (p_i − c) (w_i − d_i) / r_i.
   v.scratch = (v.filtered - v.deviation) * v.inv_r;
   out.points.clear();  // keeps the storage; no value-initialisation of n points (~1.5 µs)
@@ -720,13 +743,8 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
     out.points.push_back(
         {points[i].x + v.x[e] * v.scratch[e], points[i].y + v.y[e] * v.scratch[e]});
   }
-  if (filtered_ls) {
-    // Output point i is c + (R + w_i) u_i on input ray i: its LS circle in one step from c
-    // (least_squares.cpp, "Points on rays"); the full fit where that step is not exact.
-    std::optional<LeastSquaresCircle> ls = internal::least_squares_circle_on_rays(
-        center, radius, v.filtered.data(), v.x.data(), v.y.data(), v.inv_r.data(), n);
+  if (filtered_ls)
     *filtered_ls = ls ? std::move(*ls) : internal::fit_least_squares_circle(out.points);
-  }
 }
 
 /// filter_about, independent of the input order: when the points are not on an equiangular
@@ -737,11 +755,11 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
 void filter_any_order(std::span<const Point2> points, double cutoff_upr,
                       const LeastSquaresCircle& ls, FilterPathChoice choice, const char* caller,
                       FilteredProfile& out, LeastSquaresCircle* filtered_ls,
-                      bool* not_closed = nullptr) {
+                      bool* not_closed = nullptr, bool form_points = true) {
   const Point2 center = ls.center;
   const double radius = ls.radius, bound = ls.ron.ront;  // |r_i − R| ≤ RONt
   filter_about(points, cutoff_upr, center, radius, bound, choice, caller, out, filtered_ls,
-               not_closed);
+               not_closed, form_points);
   if (not_closed && *not_closed) return;
   if (out.path == FilterPath::fft || choice == FilterPathChoice::nonuniform) return;
   const std::size_t n = points.size();
@@ -811,12 +829,25 @@ FilteredProfile gaussian_filtered_profile(std::span<const Point2> points, double
   return out;
 }
 
+LeastSquaresCircle gaussian_filtered_least_squares_circle(std::span<const Point2> points,
+                                                          double cutoff_upr,
+                                                          const LeastSquaresCircle& least_squares,
+                                                          bool points_validated) {
+  constexpr const char* kCaller = "gaussian_filtered_profile";
+  check_filter_input(points, cutoff_upr, kCaller, &least_squares, points_validated);
+  thread_local FilteredProfile out;  // the points, formed only for the full fit
+  LeastSquaresCircle filtered;
+  filter_any_order(points, cutoff_upr, least_squares, FilterPathChoice::automatic, kCaller, out,
+                   &filtered, nullptr, /*form_points=*/false);
+  return filtered;
+}
+
 void gaussian_filtered_profile(std::span<const Point2> points, double cutoff_upr,
                                const LeastSquaresCircle& least_squares, FilteredProfile& out,
                                LeastSquaresCircle* filtered_least_squares,
-                               FilterPathChoice choice) {
+                               FilterPathChoice choice, bool points_validated) {
   constexpr const char* kCaller = "gaussian_filtered_profile";
-  check_filter_input(points, cutoff_upr, kCaller, &least_squares);
+  check_filter_input(points, cutoff_upr, kCaller, &least_squares, points_validated);
   filter_any_order(points, cutoff_upr, least_squares, choice, kCaller, out,
                    filtered_least_squares);
 }

@@ -158,6 +158,100 @@ TEST(GaussianFilterIntoCallersProfile, FilteredLeastSquaresOfNoisyScansToRoundin
               worst_center, worst_ront);
 }
 
+void expect_same_bits(const LeastSquaresCircle& a, const LeastSquaresCircle& b) {
+  EXPECT_EQ(a.center, b.center);
+  EXPECT_EQ(a.radius, b.radius);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.contacts, b.contacts);
+  EXPECT_EQ(a.ron.ront, b.ron.ront);
+  EXPECT_EQ(a.ron.ronp, b.ron.ronp);
+  EXPECT_EQ(a.ron.ronv, b.ron.ronv);
+  EXPECT_EQ(a.ron.ronq, b.ron.ronq);
+}
+
+TEST(GaussianFilteredLeastSquaresCircle, BitForBitTheCircleOfTheProfileOverload) {
+  // gaussian_filtered_least_squares_circle (no output points formed where the one step on the
+  // rays applies, and with points_validated no second check of the points) against
+  // *filtered_least_squares of the overload that forms them: every path, the one-step result
+  // and its fallback (a circle off the LS centre by 1e-3 mm: the step exceeds 2⁻³⁰ R).
+  const PathProfiles p;
+  const auto& [lobed, jittered, closed] = p;
+  std::vector<Point2> shuffled = vcmm::test::lobed_noisy_ring(360, 9, 2e-5);
+  std::swap(shuffled[10], shuffled[200]);
+  const std::vector<const std::vector<Point2>*> profiles = {&lobed, &jittered, &closed,
+                                                            &shuffled};
+  int one_step = 0, fallback = 0;
+  for (const std::vector<Point2>* pts : profiles) {
+    for (double fc : {15.0, 50.0, 150.0}) {
+      for (double offset : {0.0, 1e-3}) {
+        SCOPED_TRACE("n " + std::to_string(pts->size()) + ", cut-off " + std::to_string(fc) +
+                     ", centre offset " + std::to_string(offset));
+        LeastSquaresCircle ls = least_squares_circle(*pts);
+        ls.center.x += offset;
+        FilteredProfile f;
+        LeastSquaresCircle expected;
+        gaussian_filtered_profile(*pts, fc, ls, f, &expected);
+        (expected.iterations == 1 ? one_step : fallback) += 1;
+        expect_same_bits(vcmm::geometry::gaussian_filtered_least_squares_circle(*pts, fc, ls),
+                         expected);
+        expect_same_bits(
+            vcmm::geometry::gaussian_filtered_least_squares_circle(*pts, fc, ls, true),
+            expected);
+        FilteredProfile vouched;
+        gaussian_filtered_profile(*pts, fc, ls, vouched, nullptr, FilterPathChoice::automatic,
+                                  /*points_validated=*/true);
+        expect_identical(vouched, f);
+      }
+    }
+  }
+  EXPECT_GT(one_step, 0);
+  EXPECT_GT(fallback, 0);
+}
+
+TEST(GaussianFilteredLeastSquaresCircle, BadPointsStillNamedWhenTheCallerVouchesForThem) {
+  // points_validated skips the per-point check only for points the filter takes near the
+  // circle; a non-finite or a collinear set still throws with the full check's message.
+  const auto good = vcmm::test::lobed_noisy_ring(360, 3);
+  const LeastSquaresCircle ls = least_squares_circle(good);
+  auto expect_invalid = [&](const std::vector<Point2>& pts, double fc,
+                            const std::string& fragment) {
+    for (int entry = 0; entry < 2; ++entry) {
+      try {
+        if (entry == 0) {
+          vcmm::geometry::gaussian_filtered_least_squares_circle(pts, fc, ls, true);
+        } else {
+          FilteredProfile f;
+          gaussian_filtered_profile(pts, fc, ls, f, nullptr, FilterPathChoice::automatic, true);
+        }
+        ADD_FAILURE() << "expected InvalidInput mentioning '" << fragment << "'";
+      } catch (const InvalidInput& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("gaussian_filtered_profile"), std::string::npos) << what;
+        EXPECT_NE(what.find(fragment), std::string::npos) << what;
+      }
+    }
+  };
+  std::vector<Point2> bad = good;
+  bad[17].y = std::nan("");
+  expect_invalid(bad, 50, "point 17 has a non-finite coordinate");
+  bad = good;
+  bad[300].x = -INFINITY;
+  expect_invalid(bad, 50, "point 300 has a non-finite coordinate");
+  std::vector<Point2> line;
+  for (int i = 0; i < 40; ++i) line.push_back({0.5 * i, 0.25 * i});
+  expect_invalid(line, 5, "collinear");
+  expect_invalid(std::vector<Point2>(good.begin(), good.begin() + 7), 2, "at least 8");
+  expect_invalid(good, 181, "must not exceed n/2");
+  LeastSquaresCircle off = ls;
+  off.radius = 0.0;
+  try {
+    vcmm::geometry::gaussian_filtered_least_squares_circle(good, 50, off, true);
+    ADD_FAILURE() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("radius > 0"), std::string::npos) << e.what();
+  }
+}
+
 TEST(GaussianFilterSharedLeastSquaresBadInput, CircleMustBeFiniteWithPositiveRadius) {
   const auto pts = vcmm::test::lobed_noisy_ring(360, 3);
   const LeastSquaresCircle good = least_squares_circle(pts);

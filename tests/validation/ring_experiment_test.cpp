@@ -319,5 +319,30 @@ TEST(RingExperiment, BadInputIsRejected) {
   EXPECT_THROW(evaluate_ring(few, {}), geometry::InvalidInput);  // too few to filter
 }
 
+TEST(RingExperiment, ANonFiniteTrialProfileFailsNamingThePoint) {
+  // The trial checks the simulated points once (least_squares_circle), not again in the
+  // filter: a trial profile with a NaN or an infinity still fails with a clear message.
+  const auto m = ring(em::ProbingMode::scanning, 360, true);
+  RingEvaluationOptions o;
+  ASSERT_TRUE(o.filter_cutoff_upr.has_value());
+  for (const auto c : {ReferenceCircle::least_squares, ReferenceCircle::minimum_zone,
+                       ReferenceCircle::maximum_inscribed,
+                       ReferenceCircle::minimum_circumscribed}) {
+    o.reference = c;
+    for (const double bad : {std::nan(""), static_cast<double>(INFINITY)}) {
+      std::vector<geometry::Point2> profile = ring_profile(m);
+      profile[123].x = bad;
+      try {
+        evaluate_ring(profile, o);
+        ADD_FAILURE() << "expected InvalidInput";
+      } catch (const geometry::InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("point 123 has a non-finite coordinate"),
+                  std::string::npos)
+            << e.what();
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vcmm::validation

@@ -67,21 +67,24 @@ RingMeasurands evaluate_ring(std::span<const geometry::Point2> profile,
   if (options.filter_cutoff_upr) {
     // The filter about the LS circle just fitted (bit for bit the filter's own fit), into a
     // per-thread profile (a Monte Carlo run allocates no points per trial). With the LS
-    // reference the filter also returns the LS circle of its output, in one step on its
-    // rays instead of a second fit (the same circle to ~1e-14 mm; gaussian_filter.h).
+    // reference only the LS circle of the filter's output is needed: one step on its rays
+    // instead of a second fit (the same circle to ~1e-14 mm), without forming the points, and
+    // without checking the points again (least_squares_circle has; gaussian_filter.h; the
+    // other references skip that check too).
     thread_local geometry::FilteredProfile filtered;
     if (options.reference == ReferenceCircle::least_squares) {
-      geometry::LeastSquaresCircle filtered_ls;
-      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered,
-                                          &filtered_ls);
-      out.roundness_mm = filtered_ls.ron.ront;
+      out.roundness_mm = geometry::gaussian_filtered_least_squares_circle(
+                             profile, *options.filter_cutoff_upr, ls, /*points_validated=*/true)
+                             .ron.ront;
     } else if (options.reference == ReferenceCircle::minimum_zone ||
                options.reference == ReferenceCircle::maximum_inscribed) {
       // MZ and MI from a subset of the filtered profile's extremes about the filter centre,
       // proven to decide the circle of all points: RONt bit for bit minimum_zone_circle's and
       // maximum_inscribed_circle's (*_from_extremes.h), at a fraction of the full fit's cost.
       thread_local geometry::ExtremesScratch extremes;
-      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered);
+      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered,
+                                          nullptr, geometry::FilterPathChoice::automatic,
+                                          /*points_validated=*/true);
       out.roundness_mm =
           options.reference == ReferenceCircle::minimum_zone
               ? geometry::minimum_zone_ront_from_extremes(filtered.points,
@@ -89,7 +92,9 @@ RingMeasurands evaluate_ring(std::span<const geometry::Point2> profile,
               : geometry::maximum_inscribed_ront_from_extremes(filtered.points,
                                                                filtered.filter_center, extremes);
     } else {
-      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered);
+      geometry::gaussian_filtered_profile(profile, *options.filter_cutoff_upr, ls, filtered,
+                                          nullptr, geometry::FilterPathChoice::automatic,
+                                          /*points_validated=*/true);
       out.roundness_mm = fit_reference(filtered.points, options.reference).ront;
     }
   } else {

@@ -120,6 +120,40 @@ void BM_AllFourCirclesFiltered(benchmark::State& state) {
 }
 BENCHMARK(BM_AllFourCirclesFiltered)->Apply(sizes);
 
+// The stages of BM_AllFourCirclesFiltered after the filter, one at a time, on the filtered
+// profile (50 UPR) it fits them to: MZ, MI, MC and the coverage about the filtered LS centre.
+const std::vector<g::Point2>& filtered_profile(std::size_t n) {
+  static std::map<std::size_t, std::vector<g::Point2>> cache;
+  auto& f = cache[n];
+  if (f.empty()) f = g::gaussian_filtered_profile(profile(n), 50.0).points;
+  return f;
+}
+
+void BM_FilteredMinimumZone(benchmark::State& state) {
+  const auto& p = filtered_profile(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(g::minimum_zone_circle(p));
+}
+BENCHMARK(BM_FilteredMinimumZone)->Apply(sizes);
+
+void BM_FilteredMaximumInscribed(benchmark::State& state) {
+  const auto& p = filtered_profile(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(g::maximum_inscribed_circle(p));
+}
+BENCHMARK(BM_FilteredMaximumInscribed)->Apply(sizes);
+
+void BM_FilteredMinimumCircumscribed(benchmark::State& state) {
+  const auto& p = filtered_profile(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(g::minimum_circumscribed_circle(p));
+}
+BENCHMARK(BM_FilteredMinimumCircumscribed)->Apply(sizes);
+
+void BM_FilteredAngularCoverage(benchmark::State& state) {
+  const auto& p = filtered_profile(static_cast<std::size_t>(state.range(0)));
+  const g::Point2 c = g::least_squares_circle(p).center;
+  for (auto _ : state) benchmark::DoNotOptimize(g::angular_coverage(p, c));
+}
+BENCHMARK(BM_FilteredAngularCoverage)->Apply(sizes);
+
 // ---- degenerate families ----------------------------------------------------------------
 
 using Family = std::function<std::vector<g::Point2>(std::size_t)>;

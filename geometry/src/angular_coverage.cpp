@@ -24,9 +24,8 @@
 // the tests, the general path runs.
 #include "vcmm/geometry/angular_coverage.h"
 #include "internal/angular_walk.h"
-#include "internal/vec.h"
 
-#include <Eigen/Core>
+#include "vcmm/internal/simd_clones.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -48,73 +47,104 @@ constexpr double kQuarterTurn = 0.25 * std::numbers::pi;
 /// Candidate margin on t = tan(step) (see the top): 2⁻⁴⁶ ≈ 1.4e-14.
 constexpr double kTanMargin = 0x1.0p-46;
 
-// Pass 1 runs on Eigen's SIMD packets (2 doubles with SSE2; as in least_squares.cpp): the
-// compiler does not vectorise the division and the reductions by itself.
-namespace simd = Eigen::internal;
-using Packet = simd::packet_traits<double>::type;
-constexpr std::size_t kLanes = simd::packet_traits<double>::size;
+// Pass 1 is one kernel over the points themselves (no copy of the directions): eight steps
+// a lane-wise GCC vector, compiled for AVX-512, AVX2 and the baseline (runtime dispatch,
+// vcmm/internal/simd_clones.h). Every lane computes the scalar expressions (the project is
+// compiled with -ffp-contract=off), so the tangents t_i — the only values that reach the
+// result, through the choice of candidates — are the same bits on every machine; max and min
+// are exact in any order, and the sum (a qualification test with a 1e-6 margin) is taken in a
+// fixed order of eight partial sums whatever the variant.
+#pragma GCC diagnostic ignored "-Wpsabi"  // 64-byte vectors inside the always-inlined kernel
+using V8 = double __attribute__((vector_size(64)));
+using M8 = long long __attribute__((vector_size(64)));
 
 /// Per-thread scratch arrays, kept between calls (no allocation per call).
 struct WalkScratch {
-  std::vector<double> x, y, t;       // directions p_i − c (x, y: n + 1, closing copy) and t
+  std::vector<double> t;               // step tangents
   std::vector<std::size_t> candidate;  // steps that can be the largest gap, ascending
 };
 
 thread_local WalkScratch scratch;
 
-/// A closed walk once round the centre (pass 1 of the fast path, described at the top).
-struct Walk {
-  bool ccw = true;         ///< counter-clockwise in input order
-  double t_max = 0.0;      ///< tan of the longest step
-  std::size_t wrap = 0;    ///< the step across θ = ±π (from wrap to wrap + 1), if asked for
+/// What pass 1 keeps besides the tangents: their extremes and sum, the smallest a · b, the
+/// extremes of a × b, and the first step from the upper half-plane into the lower one
+/// (`first_down`: the sign bit of y clear at the step's start, set at its end) and the first
+/// the other way (`first_up`); n when there is none.
+struct StepSummary {
+  double t_max, t_min, t_sum, dot_min, cross_min, cross_max;
+  std::size_t first_down, first_up;
 };
 
-/// Pass 1: the walk, its directions (ws.x, ws.y) and step tangents (ws.t); nullopt when
-/// the input does not qualify.
-std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
-                                 WalkScratch& ws, bool find_wrap = true) {
-  const std::size_t n = points.size();
-  if (n < 3) return std::nullopt;
-  ws.x.resize(n + 1);
-  ws.y.resize(n + 1);
-  ws.t.resize(n);
-  double* x = ws.x.data();
-  double* y = ws.y.data();
-  double* t = ws.t.data();
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = points[i].x - center.x;
-    y[i] = points[i].y - center.y;
+[[gnu::always_inline]] inline V8 vmax(V8 a, V8 b) { return a > b ? a : b; }
+[[gnu::always_inline]] inline V8 vmin(V8 a, V8 b) { return a < b ? a : b; }
+
+/// Pass 1 over the steps of the closed walk (step i from d_i = p_i − c to d_{i+1}, d_n = d_0):
+/// t_i = |a × b| / (a · b) into t[0, n) and the summary. n ≥ 3.
+VCMM_SIMD_CLONES void walk_steps(const Point2* p, std::size_t n, Point2 c, double* t,
+                                 StepSummary& out) {
+  static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
+  const double* xy = reinterpret_cast<const double*>(p);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const V8 cx = V8{} + c.x, cy = V8{} + c.y;
+  V8 t_max = V8{}, t_min = V8{} + kInf, t_sum = V8{}, dot_min = V8{} + kInf;
+  V8 cross_min = V8{} + kInf, cross_max = V8{} - kInf;
+  const auto none = static_cast<long long>(n);
+  M8 down = M8{} + none, up = M8{} + none;
+  M8 at = M8{0, 1, 2, 3, 4, 5, 6, 7};
+  const M8 even = {0, 2, 4, 6, 8, 10, 12, 14}, odd = {1, 3, 5, 7, 9, 11, 13, 15};
+  std::size_t i = 0;
+  // Steps i … i + 7 read points i … i + 8: whole blocks while i + 8 < n.
+  for (; i + 8 < n; i += 8) {
+    V8 a0, a1, b0, b1;
+    std::memcpy(&a0, xy + 2 * i, sizeof a0);
+    std::memcpy(&a1, xy + 2 * i + 8, sizeof a1);
+    std::memcpy(&b0, xy + 2 * i + 2, sizeof b0);
+    std::memcpy(&b1, xy + 2 * i + 10, sizeof b1);
+    const V8 ax = __builtin_shuffle(a0, a1, even) - cx, ay = __builtin_shuffle(a0, a1, odd) - cy;
+    const V8 bx = __builtin_shuffle(b0, b1, even) - cx, by = __builtin_shuffle(b0, b1, odd) - cy;
+    const V8 cross = ax * by - ay * bx;
+    const V8 dot = ax * bx + ay * by;
+    M8 bits;  // |a × b|: the sign bit cleared, as std::fabs
+    std::memcpy(&bits, &cross, sizeof bits);
+    bits &= M8{} + 0x7fffffffffffffffLL;
+    V8 abs_cross;
+    std::memcpy(&abs_cross, &bits, sizeof abs_cross);
+    const V8 ti = abs_cross / dot;
+    std::memcpy(t + i, &ti, sizeof ti);
+    t_max = vmax(t_max, ti);
+    t_min = vmin(t_min, ti);
+    t_sum += ti;
+    dot_min = vmin(dot_min, dot);
+    cross_min = vmin(cross_min, cross);
+    cross_max = vmax(cross_max, cross);
+    M8 sa, sb;  // sign bits of the y components (−0 has it set, as atan2 sees it)
+    std::memcpy(&sa, &ay, sizeof sa);
+    std::memcpy(&sb, &by, sizeof sb);
+    // The step's index where it goes down (up), else n; the lane's first one kept.
+    const M8 is_down = (~sa & sb) >> 63, is_up = (sa & ~sb) >> 63;  // all ones or zero
+    const M8 down_at = (is_down & at) | (~is_down & (M8{} + none));
+    const M8 up_at = (is_up & at) | (~is_up & (M8{} + none));
+    down = down < down_at ? down : down_at;
+    up = up < up_at ? up : up_at;
+    at += 8;
   }
-  x[n] = x[0];
-  y[n] = y[0];
-  // Pass 1, step i from direction a = d_i to b = d_{i+1}, t_i = |a × b| / (a · b): every
-  // step certain (t in (1e-9, 1): then |a × b| > 7e-10 |a||b|, far above its rounding, and
-  // the angle is in (7e-10, π/4)), no underflow (a · b > 2⁻⁹⁰⁰), one sign of a × b; kept as
-  // extremes and a sum (NaN from non-finite input propagates into the sum).
-  const Packet inf = simd::pset1<Packet>(std::numeric_limits<double>::infinity());
-  Packet t_max = simd::pset1<Packet>(0.0), t_min = inf, dot_min = inf, t_sum = t_max;
-  Packet cross_min = inf, cross_max = simd::pnegate(inf);
-  const std::size_t packed = n - n % kLanes;
-  for (std::size_t i = 0; i < packed; i += kLanes) {
-    const Packet ax = simd::ploadu<Packet>(x + i), ay = simd::ploadu<Packet>(y + i);
-    const Packet bx = simd::ploadu<Packet>(x + i + 1), by = simd::ploadu<Packet>(y + i + 1);
-    const Packet cross = simd::psub(simd::pmul(ax, by), simd::pmul(ay, bx));
-    const Packet dot = simd::padd(simd::pmul(ax, bx), simd::pmul(ay, by));
-    const Packet ti = simd::pdiv(simd::pabs(cross), dot);
-    simd::pstoreu(t + i, ti);
-    t_max = simd::pmax(t_max, ti);
-    t_min = simd::pmin(t_min, ti);
-    t_sum = simd::padd(t_sum, ti);
-    dot_min = simd::pmin(dot_min, dot);
-    cross_min = simd::pmin(cross_min, cross);
-    cross_max = simd::pmax(cross_max, cross);
+  double tm = 0.0, tn = kInf, ts = 0.0, dn = kInf, cn = kInf, cm = -kInf;
+  std::size_t first_down = n, first_up = n;
+  for (int k = 0; k < 8; ++k) {
+    tm = std::max(tm, t_max[k]);
+    tn = std::min(tn, t_min[k]);
+    ts += t_sum[k];
+    dn = std::min(dn, dot_min[k]);
+    cn = std::min(cn, cross_min[k]);
+    cm = std::max(cm, cross_max[k]);
+    first_down = std::min(first_down, static_cast<std::size_t>(down[k]));
+    first_up = std::min(first_up, static_cast<std::size_t>(up[k]));
   }
-  double tm = simd::predux_max(t_max), tn = simd::predux_min(t_min), ts = simd::predux(t_sum);
-  double dn = simd::predux_min(dot_min);
-  double cn = simd::predux_min(cross_min), cm = simd::predux_max(cross_max);
-  for (std::size_t i = packed; i < n; ++i) {
-    const double cross = x[i] * y[i + 1] - y[i] * x[i + 1];
-    const double dot = x[i] * x[i + 1] + y[i] * y[i + 1];
+  for (; i < n; ++i) {
+    const std::size_t j = i + 1 == n ? 0 : i + 1;
+    const double ax = p[i].x - c.x, ay = p[i].y - c.y, bx = p[j].x - c.x, by = p[j].y - c.y;
+    const double cross = ax * by - ay * bx;
+    const double dot = ax * bx + ay * by;
     const double ti = std::fabs(cross) / dot;
     t[i] = ti;
     tm = std::max(tm, ti);
@@ -123,33 +153,71 @@ std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
     dn = std::min(dn, dot);
     cn = std::min(cn, cross);
     cm = std::max(cm, cross);
+    const bool a_upper = !std::signbit(ay), b_upper = !std::signbit(by);
+    if (a_upper && !b_upper) first_down = std::min(first_down, i);
+    if (!a_upper && b_upper) first_up = std::min(first_up, i);
   }
-  // Once round: all steps turn one way, so the angles θ_i add up to 2πk, k ≥ 1; θ ≤ tan θ
-  // makes Σ t < 4π (with a margin far above the sum's rounding) force k = 1.
-  const bool ccw = cn > 0.0;
-  if (!(tn > 1e-9 && tm < 1.0 && dn > 0x1.0p-900 && (ccw || cm < 0.0) &&
-        ts < 2.0 * kTwoPi * (1.0 - 1e-6)))  // false on NaN
-    return std::nullopt;
-  if (!find_wrap) return Walk{ccw, tm, 0};
-  // The wrap: in increasing angle, the one step from the upper half (atan2 in [+0, π]: sign
-  // bit of y clear) into the lower one (sign bit set, −0 included: atan2(−0, x < 0) = −π).
-  // Four steps a test on the sign bits (the first block holding it), then the step itself.
-  std::size_t i = 0;
-  {
-    using M4 = internal::VecOf<4>::mask;  // internal/vec.h
-    for (; i + 4 <= n; i += 4) {
-      M4 a, b;  // the bits of y_i … y_{i+3} and y_{i+1} … y_{i+4}
-      std::memcpy(&a, y + i, sizeof a);
-      std::memcpy(&b, y + i + 1, sizeof b);
-      const M4 hit = ccw ? (~a & b) : (a & ~b);  // sign bit: this step is the wrap
-      if (((hit[0] | hit[1]) | (hit[2] | hit[3])) < 0) break;
+  // A NaN anywhere propagates into the sum (max and min may drop it).
+  out = {tm, tn, ts, dn, cn, cm, first_down, first_up};
+}
+
+/// The steps s with t[s] ≥ threshold, ascending, into `out`; false (out incomplete) when
+/// there are more than `limit`. One compare per 32 steps (of their lane-wise maximum), the
+/// rare blocks with a hit scanned step by step.
+VCMM_SIMD_CLONES bool steps_at_least(const double* t, std::size_t n, double threshold,
+                                     std::size_t limit, std::vector<std::size_t>& out) {
+  out.clear();
+  const V8 thr = V8{} + threshold;
+  std::size_t s = 0;
+  for (; s < n; s += 32) {
+    if (s + 32 <= n) {
+      V8 v[4];
+      std::memcpy(v, t + s, sizeof v);
+      const V8 m = vmax(vmax(v[0], v[1]), vmax(v[2], v[3]));
+      const M8 hit = m >= thr;
+      const M8 h4 = __builtin_shuffle(hit, M8{4, 5, 6, 7, 0, 1, 2, 3}) | hit;
+      const M8 h2 = __builtin_shuffle(h4, M8{2, 3, 0, 1, 6, 7, 4, 5}) | h4;
+      if (((__builtin_shuffle(h2, M8{1, 0, 3, 2, 5, 4, 7, 6}) | h2)[0]) == 0) continue;
+    }
+    for (std::size_t k = s; k < std::min(s + 32, n); ++k) {
+      if (t[k] < threshold) continue;
+      if (out.size() == limit) return false;
+      out.push_back(k);
     }
   }
-  for (; i < n; ++i) {
-    const bool a_upper = !std::signbit(y[i]), b_upper = !std::signbit(y[i + 1]);
-    if (ccw ? (a_upper && !b_upper) : (!a_upper && b_upper)) return Walk{ccw, tm, i};
-  }
-  return std::nullopt;  // not reached: a walk once round crosses θ = ±π once
+  return true;
+}
+
+/// A closed walk once round the centre (pass 1 of the fast path, described at the top).
+struct Walk {
+  bool ccw = true;         ///< counter-clockwise in input order
+  double t_max = 0.0;      ///< tan of the longest step
+  std::size_t wrap = 0;    ///< the step across θ = ±π (from wrap to wrap + 1)
+};
+
+/// Pass 1: the walk and its step tangents (ws.t); nullopt when the input does not qualify.
+std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
+                                 WalkScratch& ws) {
+  const std::size_t n = points.size();
+  if (n < 3) return std::nullopt;
+  ws.t.resize(n);
+  // Step i from direction a = d_i to b = d_{i+1}, t_i = |a × b| / (a · b): every step
+  // certain (t in (1e-9, 1): then |a × b| > 7e-10 |a||b|, far above its rounding, and the
+  // angle is in (7e-10, π/4)), no underflow (a · b > 2⁻⁹⁰⁰), one sign of a × b; kept as
+  // extremes and a sum (NaN from non-finite input propagates into the sum).
+  StepSummary s;
+  walk_steps(points.data(), n, center, ws.t.data(), s);
+  // Once round: all steps turn one way, so the angles θ_i add up to 2πk, k ≥ 1; θ ≤ tan θ
+  // makes Σ t < 4π (with a margin far above the sum's rounding) force k = 1.
+  const bool ccw = s.cross_min > 0.0;
+  if (!(s.t_min > 1e-9 && s.t_max < 1.0 && s.dot_min > 0x1.0p-900 &&
+        (ccw || s.cross_max < 0.0) && s.t_sum < 2.0 * kTwoPi * (1.0 - 1e-6)))  // false on NaN
+    return std::nullopt;
+  // The wrap: in increasing angle, the one step from the upper half (atan2 in [+0, π]: sign
+  // bit of y clear) into the lower one (sign bit set, −0 included: atan2(−0, x < 0) = −π).
+  const std::size_t wrap = ccw ? s.first_down : s.first_up;
+  if (wrap == n) return std::nullopt;  // not reached: a walk once round crosses θ = ±π once
+  return Walk{ccw, s.t_max, wrap};
 }
 
 /// The fast path described at the top; nullopt when the walk does not qualify.
@@ -162,25 +230,20 @@ std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> 
   const bool ccw = walk->ccw;
   const double tm = walk->t_max;
   const std::size_t wrap = walk->wrap;
-  const double* x = ws.x.data();
-  const double* y = ws.y.data();
-  const double* t = ws.t.data();
   // Pass 2: the candidates; beyond n / 4 of them (many steps equal to the last few ulps, e.g.
   // an exact equiangular ring about its own centre) the general path's n atan2 cost less.
-  const double threshold = tm - kTanMargin;
-  ws.candidate.clear();
-  for (std::size_t s = 0; s < n; ++s) {
-    if (t[s] < threshold) continue;
-    if (ws.candidate.size() == n / 4) return std::nullopt;
-    ws.candidate.push_back(s);
-  }
+  if (!steps_at_least(ws.t.data(), n, tm - kTanMargin, n / 4, ws.candidate))
+    return std::nullopt;
   // Step s joins points s and s + 1; in increasing angle it runs from `from(s)` to `to(s)`.
   // The wrap step (across θ = ±π, from the upper half into the lower in increasing angle) is
   // where the general path's order starts and ends.
   const auto next = [n](std::size_t i) { return i + 1 == n ? 0 : i + 1; };
   const auto from = [&](std::size_t s) { return ccw ? s : next(s); };
   const auto to = [&](std::size_t s) { return ccw ? next(s) : s; };
-  const auto angle = [&](std::size_t i) { return std::atan2(y[i], x[i]); };
+  // The directions d_i = p_i − c as pass 1 formed them (the same roundings).
+  const auto angle = [&](std::size_t i) {
+    return std::atan2(points[i].y - center.y, points[i].x - center.x);
+  };
   // Pass 3, the general path's scan: the wrap gap first, then the candidate gaps in
   // increasing angle, strict ">". Increasing angle is input order from the wrap onwards,
   // backwards for a clockwise walk.
@@ -219,7 +282,7 @@ std::optional<AngularCoverage> coverage_of_angular_walk(std::span<const Point2> 
 
 bool internal::has_angular_steps_below(std::span<const Point2> points, Point2 center,
                                        double limit_rad) {
-  const std::optional<Walk> walk = angular_walk(points, center, scratch, /*find_wrap=*/false);
+  const std::optional<Walk> walk = angular_walk(points, center, scratch);
   // t_max < tan(limit) with both sides good to a few ulps: a margin of 1e-6 relative.
   return walk && walk->t_max < (1.0 - 1e-6) * std::tan(std::min(limit_rad, kQuarterTurn));
 }

@@ -147,6 +147,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "internal/distance_scan.h"
@@ -396,63 +397,153 @@ bool same_point_as_contact(std::span<const Point2> points, const Quad& q, Point2
          p == points[q.inner[1]];
 }
 
-/// The branch-free map of containment_pass (see there) over points [lo, hi): squared
-/// distances s_i from (cx, cy), squared deviations from the mean circle rm (series on a thin
-/// zone, else the direct formula) and the flag "not surely placed" (s_i ∉ (t_in, t_out)).
+/// The per-point work of containment_pass (see there) over points [lo, hi), lo a multiple
+/// of 4: squared distances s_i from (cx, cy); squared deviations from the mean circle rm
+/// (series on a thin zone, else the direct formula) added into four partial sums, point i
+/// into lane i mod 4 — the order of the Eigen reduction they replace (below); the points
+/// the filter cannot place (s_i ∉ (t_in, t_out)) appended in increasing index, and
+/// `surely_outside` set when one of them lies beyond t_out_hi or t_in_lo.
 struct ContainmentMap {
-  double cx, cy, rm, rm2, inv, t_out, t_in;
+  double cx, cy, rm, rm2, inv, t_out, t_in, t_out_hi, t_in_lo;
 };
-[[gnu::always_inline]] inline void containment_map_body(bool thin, const ContainmentMap& m,
-                                                        const Point2* __restrict p,
-                                                        std::size_t lo, std::size_t hi,
-                                                        double* __restrict sq,
-                                                        double* __restrict dev2,
-                                                        double* __restrict flag) {
-  const double cx = m.cx, cy = m.cy, rm = m.rm, rm2 = m.rm2, inv = m.inv;
-  const double t_out = m.t_out, t_in = m.t_in;
-  if (thin) {
-    for (std::size_t i = lo; i < hi; ++i) {
-      const double dx = p[i].x - cx, dy = p[i].y - cy;
-      const double s = dx * dx + dy * dy;
-      const double x = (s - rm2) * inv;
-      const double dev = rm * x * (1.0 + x * (-0.5 + x * (0.5 - 0.625 * x)));
-      sq[i] = s;
-      dev2[i] = dev * dev;
-      flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
-    }
+#pragma GCC diagnostic ignored "-Wpsabi"  // 32/64-byte vectors inside the kernels only
+template <int W>
+struct ContainmentLanes;
+template <>
+struct ContainmentLanes<4> {
+  using V = double __attribute__((vector_size(32)));
+  using M = long long __attribute__((vector_size(32)));
+  static constexpr M kX = {0, 2, 4, 6}, kY = {1, 3, 5, 7};
+  static constexpr M kSwap2 = {2, 3, 0, 1}, kSwap1 = {1, 0, 3, 2};
+};
+template <>
+struct ContainmentLanes<8> {
+  using V = double __attribute__((vector_size(64)));
+  using M = long long __attribute__((vector_size(64)));
+  static constexpr M kX = {0, 2, 4, 6, 8, 10, 12, 14}, kY = {1, 3, 5, 7, 9, 11, 13, 15};
+  static constexpr M kSwap2 = {2, 3, 0, 1, 6, 7, 4, 5}, kSwap1 = {1, 0, 3, 2, 5, 4, 7, 6};
+};
+using Sum4 = double __attribute__((vector_size(32)));
+
+/// The deviation from rm of a point at squared distance sq (a double or a vector: the same
+/// operations lane by lane, no FMA): the series on a thin zone, else the direct formula.
+template <bool kThin, class T>
+[[gnu::always_inline]] inline T deviation_of(const T& sq, double rm, double rm2, double inv) {
+  if constexpr (kThin) {
+    const T x = (sq - rm2) * inv;
+    return rm * x * (1.0 + x * (-0.5 + x * (0.5 - 0.625 * x)));
+  } else if constexpr (std::is_same_v<T, double>) {
+    return (sq - rm2) / (std::sqrt(sq) + rm);
   } else {
-    for (std::size_t i = lo; i < hi; ++i) {
-      const double dx = p[i].x - cx, dy = p[i].y - cy;
-      const double s = dx * dx + dy * dy;
-      const double dev = (s - rm2) / (std::sqrt(s) + rm);
-      sq[i] = s;
-      dev2[i] = dev * dev;
-      flag[i] = s < t_out && s > t_in ? 0.0 : 1.0;
-    }
+    T dev;  // the vector square root is the scalar one, lane by lane (rare: wide zones)
+    for (int k = 0; k < static_cast<int>(sizeof(T) / sizeof(double)); ++k)
+      dev[k] = (sq[k] - rm2) / (std::sqrt(sq[k]) + rm);
+    return dev;
   }
 }
-// Compiled for the baseline ISA and for AVX2, chosen per call (internal/isa.h): the same
-// element-wise operations (no FMA: -ffp-contract=off; sqrt and division correctly rounded),
-// so the same bits.
-void containment_map_baseline(bool thin, const ContainmentMap& m, const Point2* p,
-                              std::size_t lo, std::size_t hi, double* sq, double* dev2,
-                              double* flag) {
-  containment_map_body(thin, m, p, lo, hi, sq, dev2, flag);
+
+template <int W, bool kThin>
+[[gnu::always_inline]] inline void containment_body(const ContainmentMap& m, const Point2* p,
+                                                    std::size_t lo, std::size_t hi,
+                                                    Sum4& sum, std::vector<std::size_t>& ambiguous,
+                                                    bool& surely_outside) {
+  using V = typename ContainmentLanes<W>::V;
+  using M = typename ContainmentLanes<W>::M;
+  const double* xy = reinterpret_cast<const double*>(p);
+  const V cx = V{} + m.cx, cy = V{} + m.cy, t_out = V{} + m.t_out, t_in = V{} + m.t_in;
+  const auto place = [&](std::size_t i, double sq) {
+    if (sq < m.t_out && sq > m.t_in) return;
+    if (sq > m.t_out_hi || sq < m.t_in_lo) surely_outside = true;
+    ambiguous.push_back(i);
+  };
+  Sum4 acc = sum;  // in registers through the loop
+  std::size_t i = lo;
+  for (; i + W <= hi; i += W) {
+    V a, b;
+    __builtin_memcpy(&a, xy + 2 * i, sizeof a);
+    __builtin_memcpy(&b, xy + 2 * i + W, sizeof b);
+    const V dx = __builtin_shuffle(a, b, ContainmentLanes<W>::kX) - cx;
+    const V dy = __builtin_shuffle(a, b, ContainmentLanes<W>::kY) - cy;
+    const V sq = dx * dx + dy * dy;
+    const V dev = deviation_of<kThin>(sq, m.rm, m.rm2, m.inv);
+    const V dev2 = dev * dev;
+    if constexpr (W == 4) {
+      acc += dev2;
+    } else {
+      Sum4 half[2];
+      __builtin_memcpy(half, &dev2, sizeof half);
+      acc += half[0];
+      acc += half[1];
+    }
+    // Surely placed: t_in < s < t_out, i.e. max(s − t_out, t_in − s) < 0 (a difference of
+    // doubles has the sign of the exact one; NaN compares false): one compare (two masks
+    // combined are not vectorised for every target), the lanes AND-ed by shuffles.
+    const V gap = sq - t_out, gap_in = t_in - sq;
+    M placed = (gap > gap_in ? gap : gap_in) < 0.0;
+    if constexpr (W == 8) placed &= __builtin_shuffle(placed, M{4, 5, 6, 7, 0, 1, 2, 3});
+    placed &= __builtin_shuffle(placed, ContainmentLanes<W>::kSwap2);
+    placed &= __builtin_shuffle(placed, ContainmentLanes<W>::kSwap1);
+    if (placed[0] == 0) [[unlikely]] {
+      for (int k = 0; k < W; ++k) place(i + k, sq[k]);
+    }
+  }
+  // The last < W points of the profile (blocks are multiples of 4 long, but W may be 8).
+  double rest[4] = {0.0, 0.0, 0.0, 0.0};
+  for (; i < hi; ++i) {
+    const double dx = p[i].x - m.cx, dy = p[i].y - m.cy;
+    const double sq = dx * dx + dy * dy;
+    const double dev = deviation_of<kThin>(sq, m.rm, m.rm2, m.inv);
+    rest[i % 4] = dev * dev;
+    if (i % 4 == 3 || i + 1 == hi) {
+      acc += Sum4{rest[0], rest[1], rest[2], rest[3]};  // lanes not reached add +0: exact
+      rest[0] = rest[1] = rest[2] = rest[3] = 0.0;
+    }
+    place(i, sq);
+  }
+  sum = acc;
+}
+
+template <int W>
+[[gnu::always_inline]] inline void containment_dispatch(bool thin, const ContainmentMap& m,
+                                                        const Point2* p, std::size_t lo,
+                                                        std::size_t hi, Sum4& sum,
+                                                        std::vector<std::size_t>& ambiguous,
+                                                        bool& surely_outside) {
+  if (thin) containment_body<W, true>(m, p, lo, hi, sum, ambiguous, surely_outside);
+  else containment_body<W, false>(m, p, lo, hi, sum, ambiguous, surely_outside);
+}
+// Compiled for the baseline ISA, AVX2 and AVX-512, chosen per call (internal/isa.h): the
+// same element-wise operations (no FMA: -ffp-contract=off; sqrt and division correctly
+// rounded) and the same partial sums, so the same bits.
+void containment_baseline(bool thin, const ContainmentMap& m, const Point2* p, std::size_t lo,
+                          std::size_t hi, Sum4& sum, std::vector<std::size_t>& ambiguous,
+                          bool& surely_outside) {
+  containment_dispatch<4>(thin, m, p, lo, hi, sum, ambiguous, surely_outside);
 }
 #if VCMM_GEOMETRY_X86
-__attribute__((target("avx2"))) void containment_map_avx2(bool thin, const ContainmentMap& m,
-                                                          const Point2* p, std::size_t lo,
-                                                          std::size_t hi, double* sq,
-                                                          double* dev2, double* flag) {
-  containment_map_body(thin, m, p, lo, hi, sq, dev2, flag);
+__attribute__((target("avx2"))) void containment_avx2(bool thin, const ContainmentMap& m,
+                                                      const Point2* p, std::size_t lo,
+                                                      std::size_t hi, Sum4& sum,
+                                                      std::vector<std::size_t>& ambiguous,
+                                                      bool& surely_outside) {
+  containment_dispatch<4>(thin, m, p, lo, hi, sum, ambiguous, surely_outside);
+}
+__attribute__((target("avx512f,avx512dq,avx512vl"))) void containment_avx512(
+    bool thin, const ContainmentMap& m, const Point2* p, std::size_t lo, std::size_t hi,
+    Sum4& sum, std::vector<std::size_t>& ambiguous, bool& surely_outside) {
+  containment_dispatch<8>(thin, m, p, lo, hi, sum, ambiguous, surely_outside);
 }
 #endif
-void containment_map(bool thin, const ContainmentMap& m, const Point2* p, std::size_t lo,
-                     std::size_t hi, double* sq, double* dev2, double* flag) {
+void containment_block(bool thin, const ContainmentMap& m, const Point2* p, std::size_t lo,
+                       std::size_t hi, Sum4& sum, std::vector<std::size_t>& ambiguous,
+                       bool& surely_outside) {
 #if VCMM_GEOMETRY_X86
-  if (internal::use_avx2()) return containment_map_avx2(thin, m, p, lo, hi, sq, dev2, flag);
+  if (internal::use_avx512())
+    return containment_avx512(thin, m, p, lo, hi, sum, ambiguous, surely_outside);
+  if (internal::use_avx2())
+    return containment_avx2(thin, m, p, lo, hi, sum, ambiguous, surely_outside);
 #endif
-  containment_map_baseline(thin, m, p, lo, hi, sq, dev2, flag);
+  containment_baseline(thin, m, p, lo, hi, sum, ambiguous, surely_outside);
 }
 
 /// One pass: exact containment of every point in the closed annulus of `k` — a floating
@@ -482,51 +573,48 @@ PassResult containment_pass(std::span<const Point2> points, const Candidate& k,
   const bool thin = std::max(std::abs(k.rounded.outer_sq - rm2),
                              std::abs(k.rounded.inner_sq - rm2)) <= 2e-4 * rm2;
   const double inv = 0.5 / rm2;
-  // Per block, two loops: a branch-free map (vectorised) of the squared distances s_i, the
-  // squared deviations and a 0/1 flag "not surely placed" into per-thread buffers, then a
-  // scan of the flags four at a time for the few points the filter cannot place; at the end
-  // the deviations summed by Eigen's vectorised reduction over the whole buffer.
+  // Blocks of kBlock points (a multiple of 4): one vectorised kernel per block maps every
+  // point and keeps the few the filter cannot place; with `stop_at_violation` a point surely
+  // outside ends the pass at its block (the caller only needs the verdict). The squared
+  // deviations are summed as Eigen's vectorised reduction of the whole buffer summed them
+  // (its 2-double packets, two of them: point i into partial sum i mod 4 up to the last
+  // whole four; then (S₀ + S₂) and (S₁ + S₃), the next two points into them, their sum,
+  // and a last odd point), so RONq keeps its bits.
   const std::size_t n = points.size();
-  thread_local std::vector<double> squared_distance, squared_deviation;
-  squared_distance.resize(n);
-  squared_deviation.resize(n);
-  double* __restrict sq = squared_distance.data();
-  double* __restrict dev2 = squared_deviation.data();
-  const Point2* __restrict p = points.data();
-  const double cx = k.c.x, cy = k.c.y;
-  thread_local std::vector<double> flag_buffer;
-  flag_buffer.resize(n + 3);
-  double* __restrict flag = flag_buffer.data();  // 1: the filter cannot place point i
-  flag[n] = flag[n + 1] = flag[n + 2] = 0.0;  // padding for the blocks of four below
-  // Blocks of kBlock points (a multiple of 4): map, then scan; with `stop_at_violation` a
-  // point surely outside ends the pass at its block (the caller only needs the verdict).
+  const ContainmentMap map{k.c.x, k.c.y, rm, rm2, inv, t_out, t_in, t_out_hi, t_in_lo};
   constexpr std::size_t kBlock = 512;
+  const std::size_t whole = n - n % 4;
   bool surely_outside = false;
-  std::vector<std::size_t>& ambiguous = out.ambiguous;
-  for (std::size_t lo = 0; lo < n; lo += kBlock) {
-    const std::size_t hi = std::min(lo + kBlock, n);
-    containment_map(thin, {cx, cy, rm, rm2, inv, t_out, t_in}, p, lo, hi, sq, dev2, flag);
-    for (std::size_t b = lo; b < hi; b += 4) {
-      if (flag[b] + flag[b + 1] + flag[b + 2] + flag[b + 3] == 0.0) continue;
-      for (std::size_t i = b; i < std::min(b + 4, n); ++i) {
-        if (flag[i] == 0.0) continue;
-        if (sq[i] > t_out_hi || sq[i] < t_in_lo) surely_outside = true;
-        ambiguous.push_back(i);
-      }
-    }
+  Sum4 sum = {};
+  for (std::size_t lo = 0; lo < whole; lo += kBlock) {
+    containment_block(thin, map, points.data(), lo, std::min(lo + kBlock, whole), sum,
+                      out.ambiguous, surely_outside);
     if (surely_outside && stop_at_violation) {
       out.contains = false;
       return out;
     }
   }
-  const double sum =
-      Eigen::Map<const Eigen::ArrayXd>(dev2, static_cast<Eigen::Index>(n)).sum();
-  out.ronq = std::sqrt(sum / static_cast<double>(n));
+  double tail[3] = {0.0, 0.0, 0.0};  // the squared deviations of points whole … n − 1
+  for (std::size_t i = whole; i < n; ++i) {
+    Sum4 one = {};
+    std::vector<std::size_t> flagged;
+    containment_block(thin, map, points.data(), i, i + 1, one, flagged, surely_outside);
+    tail[i - whole] = one[i % 4];
+    out.ambiguous.insert(out.ambiguous.end(), flagged.begin(), flagged.end());
+  }
+  double s0 = sum[0] + sum[2], s1 = sum[1] + sum[3];
+  if (n % 4 >= 2) {
+    s0 += tail[0];
+    s1 += tail[1];
+  }
+  double total = s0 + s1;
+  if (n % 2 == 1) total += tail[n % 4 - 1];
+  out.ronq = std::sqrt(total / static_cast<double>(n));
   if (surely_outside) {
     out.contains = false;
     return out;
   }
-  for (std::size_t i : ambiguous) {
+  for (std::size_t i : out.ambiguous) {
     if (same_point_as_contact(points, k.quad, points[i])) continue;  // on by construction
     if (annulus_side(k, points[i]) != 0) {
       out.contains = false;

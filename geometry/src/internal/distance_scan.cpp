@@ -1,34 +1,65 @@
 // internal/distance_scan.cpp — the passes of internal/distance_scan.h.
 //
 // Eight points a step in GCC vector types of four doubles (one AVX2 register, or two SSE2
-// ones in the baseline variant), as two groups of four with their own per-lane extremes (two
-// independent compare-and-select chains: one chain bounds a loop to its ~6-cycle latency per
-// group). Per group, two loads of interleaved (x, y) pairs are unpacked into x and y of points
-// (0, 2, 1, 3) of the group — the lane order of the unpack instructions, kept throughout (the
-// lane indices say which point a lane holds). The squared distance per lane is the scalar
-// expression (no FMA: -ffp-contract=off), each lane keeps its extreme and the index of its
-// first occurrence by strict comparisons, the eight lanes are merged with ties to the lowest
-// index, then the < 8 remaining points run scalar: the plain loop's result, whichever variant
-// runs. Flags: one mask test per step, the rare set bits pushed in point order.
+// ones in the baseline variant), or sixteen in vectors of eight (one AVX-512 register), as
+// two groups with their own per-lane extremes (two independent compare-and-select chains:
+// one chain bounds a loop to its ~6-cycle latency per group). Per group, two loads of
+// interleaved (x, y) pairs are unpacked into x and y of the group's points — with four lanes
+// in the order (0, 2, 1, 3) of the unpack instructions, with eight in order (one permute),
+// kept throughout (the lane indices say which point a lane holds). The squared distance per
+// lane is the scalar expression (no FMA: -ffp-contract=off), each lane keeps its extreme and
+// the index of its first occurrence by strict comparisons, the lanes are merged with ties to
+// the lowest index, then the remaining points run scalar: the plain loop's result, whichever
+// variant runs. Flags: one mask test per step, the rare set bits pushed in point order.
 #include "internal/distance_scan.h"
 
 #include <cstdint>
 #include <limits>
 
 #include "internal/isa.h"
-#include "internal/vec.h"
 
 namespace vcmm::geometry::internal {
 namespace {
 
-using V4 = VecOf<4>::type;  // internal/vec.h
-using M4 = VecOf<4>::mask;
+// Four lanes (AVX2, or two SSE2 registers) or eight (AVX-512): GCC vector types, local to
+// this file (the 8-wide ones appear only in the AVX-512 variant, always inlined).
+#pragma GCC diagnostic ignored "-Wpsabi"
+template <int W>
+struct Lanes;
+template <>
+struct Lanes<4> {
+  using V = double __attribute__((vector_size(32)));
+  using M = long long __attribute__((vector_size(32)));
+  /// x (or y, with 1) of the four points in a = (x0 y0 x1 y1), b = (x2 y2 x3 y3), in the lane
+  /// order of the unpack instructions: points 0, 2, 1, 3.
+  static constexpr M kX = {0, 4, 2, 6}, kY = {1, 5, 3, 7};
+  static constexpr M kPoint = {0, 2, 1, 3};
+  static constexpr int kOrder[4] = {0, 2, 1, 3};  // lanes in point order
+};
+template <>
+struct Lanes<8> {
+  using V = double __attribute__((vector_size(64)));
+  using M = long long __attribute__((vector_size(64)));
+  /// Points 0 … 7 of a = (x0 y0 … x3 y3), b = (x4 y4 … x7 y7) in order (one permute each).
+  static constexpr M kX = {0, 2, 4, 6, 8, 10, 12, 14}, kY = {1, 3, 5, 7, 9, 11, 13, 15};
+  static constexpr M kPoint = {0, 1, 2, 3, 4, 5, 6, 7};
+  static constexpr int kOrder[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+};
 
-/// Whether any lane of a comparison mask is set: the lanes OR-ed by two shuffles, one
-/// extraction (three extractions cost more in the loop).
-[[gnu::always_inline]] inline bool any_lane(M4 m) {
-  const M4 h = m | __builtin_shuffle(m, M4{2, 3, 0, 1});
-  return (h | __builtin_shuffle(h, M4{1, 0, 3, 2}))[0] != 0;
+/// Whether any lane of a comparison mask is set: the lanes OR-ed by shuffles, one
+/// extraction (one extraction per lane costs more in the loop).
+template <int W>
+[[gnu::always_inline]] inline bool any_lane(typename Lanes<W>::M m) {
+  using M = typename Lanes<W>::M;
+  if constexpr (W == 8) m |= __builtin_shuffle(m, M{4, 5, 6, 7, 0, 1, 2, 3});
+  M h;
+  if constexpr (W == 8) {
+    h = m | __builtin_shuffle(m, M{2, 3, 0, 1, 6, 7, 4, 5});
+    return (h | __builtin_shuffle(h, M{1, 0, 3, 2, 5, 4, 7, 6}))[0] != 0;
+  } else {
+    h = m | __builtin_shuffle(m, M{2, 3, 0, 1});
+    return (h | __builtin_shuffle(h, M{1, 0, 3, 2}))[0] != 0;
+  }
 }
 
 /// What a pass tracks: the smallest and/or the largest value; flags: none, D̃ ≥ threshold
@@ -43,41 +74,46 @@ struct Pass {
     std::size_t imin = 0, imax = 0;
   };
 
+  /// Two groups of W lanes a step (2W points), each group with its own per-lane extremes.
+  template <int W>
   [[gnu::always_inline]] static inline Out run(const Point2* p, std::size_t lo, std::size_t hi,
                                                Point2 c, double scale, double threshold,
                                                std::vector<std::size_t>* flagged) {
     static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
+    using L = Lanes<W>;
+    using V = typename L::V;
+    using M = typename L::M;
     const double* xy = reinterpret_cast<const double*>(p);
-    const V4 cx = {c.x, c.x, c.x, c.x}, cy = {c.y, c.y, c.y, c.y};
-    const V4 s = {scale, scale, scale, scale};
-    const V4 t = {threshold, threshold, threshold, threshold};
+    const V cx = V{} + c.x, cy = V{} + c.y;
+    const V s = V{} + scale;
+    const V t = V{} + threshold;
     const auto l = static_cast<std::int64_t>(lo);
-    const M4 eight = {8, 8, 8, 8};
-    M4 at[2] = {M4{0, 2, 1, 3} + l, M4{4, 6, 5, 7} + l};  // the point of each lane
-    V4 bmin[2] = {V4{} + kNoMin, V4{} + kNoMin}, bmax[2] = {V4{} + kNoMax, V4{} + kNoMax};
-    M4 amin[2] = {at[0], at[1]}, amax[2] = {at[0], at[1]};
+    const M step = M{} + 2 * W;
+    M at[2] = {L::kPoint + l, L::kPoint + (l + W)};  // the point of each lane
+    V bmin[2] = {V{} + kNoMin, V{} + kNoMin}, bmax[2] = {V{} + kNoMax, V{} + kNoMax};
+    M amin[2] = {at[0], at[1]}, amax[2] = {at[0], at[1]};
     std::size_t i = lo;
-    for (; i + 8 <= hi; i += 8) {
-      M4 flag[2];
+    for (; i + 2 * W <= hi; i += 2 * W) {
+      M flag[2];
       for (int h = 0; h < 2; ++h) {
-        V4 a, b;
-        __builtin_memcpy(&a, xy + 2 * i + 8 * h, sizeof a);      // x0 y0 x1 y1
-        __builtin_memcpy(&b, xy + 2 * i + 8 * h + 4, sizeof b);  // x2 y2 x3 y3
-        const V4 x = __builtin_shuffle(a, b, M4{0, 4, 2, 6});   // x0 x2 x1 x3
-        const V4 y = __builtin_shuffle(a, b, M4{1, 5, 3, 7});   // y0 y2 y1 y3
-        V4 dx = x - cx, dy = y - cy;
+        V a, b;
+        __builtin_memcpy(&a, xy + 2 * i + 2 * W * h, sizeof a);
+        __builtin_memcpy(&b, xy + 2 * i + 2 * W * h + W, sizeof b);
+        const V x = __builtin_shuffle(a, b, L::kX);
+        const V y = __builtin_shuffle(a, b, L::kY);
+        V dx = x - cx, dy = y - cy;
         if constexpr (kScaled) {
           dx *= s;
           dy *= s;
         }
-        const V4 d2 = dx * dx + dy * dy;
+        const V d2 = dx * dx + dy * dy;
         if constexpr (kMin) {
-          const M4 better = d2 < bmin[h];
+          const M better = d2 < bmin[h];
           bmin[h] = better ? d2 : bmin[h];
           amin[h] = better ? at[h] : amin[h];
         }
         if constexpr (kMax) {
-          const M4 better = d2 > bmax[h];
+          const M better = d2 > bmax[h];
           bmax[h] = better ? d2 : bmax[h];
           amax[h] = better ? at[h] : amax[h];
         }
@@ -85,18 +121,18 @@ struct Pass {
         if constexpr (kFlag < 0) flag[h] = d2 <= t;
       }
       if constexpr (kFlag != 0) {
-        if (any_lane(flag[0] | flag[1])) [[unlikely]] {
+        if (any_lane<W>(flag[0] | flag[1])) [[unlikely]] {
           for (int h = 0; h < 2; ++h)
-            for (int k : {0, 2, 1, 3})  // lanes in point order
+            for (int k : L::kOrder)  // lanes in point order
               if (flag[h][k] != 0) flagged->push_back(static_cast<std::size_t>(at[h][k]));
         }
       }
-      at[0] += eight;
-      at[1] += eight;
+      at[0] += step;
+      at[1] += step;
     }
     Out out;
     for (int h = 0; h < 2 && i > lo; ++h)
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < W; ++k) {
         if constexpr (kMin) {
           const auto index = static_cast<std::size_t>(amin[h][k]);
           const double v = bmin[h][k];
@@ -137,12 +173,14 @@ using NearestPass = Pass<true, false, +1, true>;
 using FarthestPass = Pass<false, true, -1, true>;
 using ExtremesPass = Pass<true, true, 0, false>;
 
-// Each pass compiled for the baseline ISA and for AVX2 (chosen per call, internal/isa.h):
-// the same element-wise operations in the same order, so the same results.
+// Each pass compiled for the baseline ISA, for AVX2 and for AVX-512 (chosen per call,
+// internal/isa.h): the same element-wise operations in the same order, so the same values;
+// the extremes (first index on ties) and the flags (in point order) do not depend on the
+// lanes.
 template <class P>
 typename P::Out run_baseline(const Point2* p, std::size_t lo, std::size_t hi, Point2 c,
                              double scale, double threshold, std::vector<std::size_t>* flagged) {
-  return P::run(p, lo, hi, c, scale, threshold, flagged);
+  return P::template run<4>(p, lo, hi, c, scale, threshold, flagged);
 }
 #if VCMM_GEOMETRY_X86
 template <class P>
@@ -150,13 +188,20 @@ __attribute__((target("avx2"))) typename P::Out run_avx2(const Point2* p, std::s
                                                          std::size_t hi, Point2 c,
                                                          double scale, double threshold,
                                                          std::vector<std::size_t>* flagged) {
-  return P::run(p, lo, hi, c, scale, threshold, flagged);
+  return P::template run<4>(p, lo, hi, c, scale, threshold, flagged);
+}
+template <class P>
+__attribute__((target("avx512f,avx512dq,avx512vl"))) typename P::Out run_avx512(
+    const Point2* p, std::size_t lo, std::size_t hi, Point2 c, double scale, double threshold,
+    std::vector<std::size_t>* flagged) {
+  return P::template run<8>(p, lo, hi, c, scale, threshold, flagged);
 }
 #endif
 template <class P>
 typename P::Out run(const Point2* p, std::size_t lo, std::size_t hi, Point2 c, double scale,
                     double threshold, std::vector<std::size_t>* flagged) {
 #if VCMM_GEOMETRY_X86
+  if (use_avx512()) return run_avx512<P>(p, lo, hi, c, scale, threshold, flagged);
   if (use_avx2()) return run_avx2<P>(p, lo, hi, c, scale, threshold, flagged);
 #endif
   return run_baseline<P>(p, lo, hi, c, scale, threshold, flagged);

@@ -31,6 +31,22 @@ inline bool cpu_has_avx2() {
 #endif
 }
 
+/// True when this CPU runs AVX-512 F, DQ and VL (checked once): the kernels that have an
+/// "avx512" variant (the FFT passes, internal/fft.cpp) take it there — 8 doubles a vector, the
+/// same element-wise operations (no FMA), so the same bits as the AVX2 and baseline variants.
+inline bool cpu_has_avx512() {
+#if VCMM_GEOMETRY_X86
+  static const bool has = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512dq") != 0 &&
+           __builtin_cpu_supports("avx512vl") != 0;
+  }();
+  return has;
+#else
+  return false;
+#endif
+}
+
 inline bool& baseline_isa_forced() {
   thread_local bool forced = false;
   return forced;
@@ -38,6 +54,8 @@ inline bool& baseline_isa_forced() {
 
 /// Whether the kernels called now on this thread take their AVX2 variant.
 inline bool use_avx2() { return cpu_has_avx2() && !baseline_isa_forced(); }
+/// Whether the kernels called now on this thread that have an AVX-512 variant take it.
+inline bool use_avx512() { return cpu_has_avx512() && !baseline_isa_forced(); }
 
 /// While alive, the kernels on this thread take their baseline variant.
 class ForceBaselineIsa {

@@ -159,6 +159,7 @@
 #include "internal/minimum_zone_overlay.h"
 #include "internal/precise_distance.h"
 #include "internal/prevalidated.h"
+#include "internal/vec.h"
 
 namespace vcmm::geometry {
 namespace {
@@ -406,24 +407,23 @@ bool same_point_as_contact(std::span<const Point2> points, const Quad& q, Point2
 struct ContainmentMap {
   double cx, cy, rm, rm2, inv, t_out, t_in, t_out_hi, t_in_lo;
 };
-#pragma GCC diagnostic ignored "-Wpsabi"  // 32/64-byte vectors inside the kernels only
 template <int W>
-struct ContainmentLanes;
+struct ContainmentLanes;  // internal/vec.h's vectors, points in order
 template <>
 struct ContainmentLanes<4> {
-  using V = double __attribute__((vector_size(32)));
-  using M = long long __attribute__((vector_size(32)));
+  using V = internal::VecOf<4>::type;
+  using M = internal::VecOf<4>::mask;
   static constexpr M kX = {0, 2, 4, 6}, kY = {1, 3, 5, 7};
   static constexpr M kSwap2 = {2, 3, 0, 1}, kSwap1 = {1, 0, 3, 2};
 };
 template <>
 struct ContainmentLanes<8> {
-  using V = double __attribute__((vector_size(64)));
-  using M = long long __attribute__((vector_size(64)));
+  using V = internal::VecOf<8>::type;
+  using M = internal::VecOf<8>::mask;
   static constexpr M kX = {0, 2, 4, 6, 8, 10, 12, 14}, kY = {1, 3, 5, 7, 9, 11, 13, 15};
   static constexpr M kSwap2 = {2, 3, 0, 1, 6, 7, 4, 5}, kSwap1 = {1, 0, 3, 2, 5, 4, 7, 6};
 };
-using Sum4 = double __attribute__((vector_size(32)));
+using Sum4 = internal::VecOf<4>::type;
 
 /// The deviation from rm of a point at squared distance sq (a double or a vector: the same
 /// operations lane by lane, no FMA): the series on a thin zone, else the direct formula.

@@ -17,19 +17,19 @@
 #include <limits>
 
 #include "internal/isa.h"
+#include "internal/vec.h"
 
 namespace vcmm::geometry::internal {
 namespace {
 
-// Four lanes (AVX2, or two SSE2 registers) or eight (AVX-512): GCC vector types, local to
-// this file (the 8-wide ones appear only in the AVX-512 variant, always inlined).
-#pragma GCC diagnostic ignored "-Wpsabi"
+// Four lanes (AVX2, or two SSE2 registers) or eight (AVX-512): internal/vec.h's vectors
+// with the lane order of each width.
 template <int W>
 struct Lanes;
 template <>
 struct Lanes<4> {
-  using V = double __attribute__((vector_size(32)));
-  using M = long long __attribute__((vector_size(32)));
+  using V = VecOf<4>::type;
+  using M = VecOf<4>::mask;
   /// x (or y, with 1) of the four points in a = (x0 y0 x1 y1), b = (x2 y2 x3 y3), in the lane
   /// order of the unpack instructions: points 0, 2, 1, 3.
   static constexpr M kX = {0, 4, 2, 6}, kY = {1, 5, 3, 7};
@@ -38,8 +38,8 @@ struct Lanes<4> {
 };
 template <>
 struct Lanes<8> {
-  using V = double __attribute__((vector_size(64)));
-  using M = long long __attribute__((vector_size(64)));
+  using V = VecOf<8>::type;
+  using M = VecOf<8>::mask;
   /// Points 0 … 7 of a = (x0 y0 … x3 y3), b = (x4 y4 … x7 y7) in order (one permute each).
   static constexpr M kX = {0, 2, 4, 6, 8, 10, 12, 14}, kY = {1, 3, 5, 7, 9, 11, 13, 15};
   static constexpr M kPoint = {0, 1, 2, 3, 4, 5, 6, 7};

@@ -616,45 +616,28 @@ std::optional<LocalOutcome> local_exhaustion(std::span<const Point2> points,
   return out;
 }
 
-std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points) {
+std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points,
+                                                const internal::SectorSample* shared) {
   const std::size_t n = points.size();
-  const internal::WarmStart warm = internal::kasa_center(points);
-  const Point2 c0 = warm.center;
-  // Candidates: the nearest point to c0 in each of `sectors` pseudo-angle sectors (64 for
+  // Candidates: the nearest point to c0 in each of the sample's pseudo-angle sectors (64 for
   // dense profiles, ≥ 8 points per sector for small n), on a stride sample of ~512 points:
   // the contacts the sample misses are violators of the first round (found by the O(n)
   // pass that runs anyway), and the coverage proof needs only some points in every
-  // direction, not all (any subset of points lies at distance ≥ r* from c*).
-  const std::size_t stride = std::max<std::size_t>(1, n / 512);
-  const std::size_t sectors = std::clamp<std::size_t>(n / stride / 8, 4, 64);
-  // The same pass fills 256 pseudo-angle occupancy buckets about c0 for the global proof.
-  std::vector<double> best(sectors, std::numeric_limits<double>::infinity());
-  std::vector<std::size_t> best_idx(sectors, n);
-  std::array<std::uint64_t, 4> occupied{};
-  const double scale = static_cast<double>(sectors) / 4.0;
+  // direction, not all (any subset of points lies at distance ≥ r* from c*). The same
+  // sample marks 256 pseudo-angle occupancy buckets about c0 for the global proof; it is the
+  // caller's when it has taken it for MC too (internal::sector_sample).
+  std::optional<internal::SectorSample> own;
+  const internal::SectorSample& sample =
+      shared ? *shared : own.emplace(internal::sector_sample(points));
+  const Point2 c0 = sample.warm.center;
+  const std::array<std::uint64_t, 4>& occupied = sample.occupied;
   // Warm-start arithmetic on (p − c0)·s0 (s0 a power of two: coordinates O(1) whatever the
   // input magnitude; the program and the sectors are invariant under scaling).
-  const double s0 = warm.scale;
-  for (std::size_t i = 0; i < n; i += stride) {
-    const double dx = (points[i].x - c0.x) * s0, dy = (points[i].y - c0.y) * s0;
-    const double d2 = dx * dx + dy * dy;
-    const double phi = internal::pseudo_angle(dx, dy);  // in [0, 4]
-    // Truncation of values in [0, 256] (4 − tiny may round up to 4: clamp).
-    auto bucket = static_cast<unsigned>(phi * 64.0);
-    if (bucket > 255u) bucket = 255u;
-    occupied[bucket >> 6] |= std::uint64_t{1} << (bucket & 63u);
-    auto s = static_cast<std::size_t>(phi * scale);
-    if (s >= sectors) s = sectors - 1;
-    if (d2 < best[s]) {
-      best[s] = d2;
-      best_idx[s] = i;
-    }
-  }
-  internal::InscribedLp lp(points, s0);
+  internal::InscribedLp lp(points, sample.warm.scale);
   std::size_t candidates = 0;
-  for (std::size_t s = 0; s < sectors; ++s)
-    if (best_idx[s] < n) {
-      lp.add(best_idx[s]);
+  for (const std::size_t i : sample.nearest)
+    if (i < n) {
+      lp.add(i);
       ++candidates;
     }
 
@@ -814,10 +797,12 @@ MaximumInscribedCircle internal::maximum_inscribed_exhaustive(std::span<const Po
   return exhaustive(points);
 }
 
-MaximumInscribedCircle internal::fit_maximum_inscribed_circle(std::span<const Point2> points) {
+MaximumInscribedCircle internal::fit_maximum_inscribed_circle(std::span<const Point2> points,
+                                                              const SectorSample* shared) {
   // Small inputs: the exhaustive method is as fast and needs no warm start.
   if (points.size() >= 16) {
-    if (std::optional<MaximumInscribedCircle> mi = fast_path(points)) return *std::move(mi);
+    if (std::optional<MaximumInscribedCircle> mi = fast_path(points, shared))
+      return *std::move(mi);
   }
   return exhaustive(points);
 }

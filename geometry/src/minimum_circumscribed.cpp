@@ -55,6 +55,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -285,7 +286,7 @@ MinimumCircumscribedCircle minimum_circumscribed_circle(std::span<const Point2> 
 }
 
 MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
-    std::span<const Point2> points) {
+    std::span<const Point2> points, const SectorSample* shared) {
   const std::size_t n = points.size();
 
   // 1. Warm start and candidate set: the farthest point from c0 in each of `sectors`
@@ -293,27 +294,14 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
   //    sectors are not mostly empty), taken on a stride sample of ~512 points: the
   //    supports the sample misses are violators of the first round, found by the O(n)
   //    pass that has to run anyway (a full sector pass would cost a division per point).
-  const internal::WarmStart warm = internal::kasa_center(points);
-  const Point2 c0 = warm.center;
-  const std::size_t stride = std::max<std::size_t>(1, n / 512);
-  const std::size_t sectors = std::clamp<std::size_t>(n / stride / 8, 4, 64);
-  std::vector<double> best(sectors, -1.0);
-  std::vector<std::size_t> best_idx(sectors, 0);
-  const double scale = static_cast<double>(sectors) / 4.0;
-  const double s0 = warm.scale;  // (p − c0)·s0 is O(1): no overflow whatever the magnitude
-  for (std::size_t i = 0; i < n; i += stride) {
-    const double dx = (points[i].x - c0.x) * s0, dy = (points[i].y - c0.y) * s0;
-    const double d2 = dx * dx + dy * dy;
-    auto s = static_cast<std::size_t>(internal::pseudo_angle(dx, dy) * scale);
-    if (s >= sectors) s = sectors - 1;
-    if (d2 > best[s]) {
-      best[s] = d2;
-      best_idx[s] = i;
-    }
-  }
+  //    The sample is the caller's when it has taken it for MI too (internal::sector_sample).
+  std::optional<internal::SectorSample> own;
+  const internal::SectorSample& sample =
+      shared ? *shared : own.emplace(internal::sector_sample(points));
+  const Point2 c0 = sample.warm.center;
   std::vector<std::size_t> set;
-  for (std::size_t s = 0; s < sectors; ++s)
-    if (best[s] >= 0.0) set.push_back(best_idx[s]);
+  for (const std::size_t i : sample.farthest)
+    if (i < n) set.push_back(i);
   if (set.size() < 2) set.push_back(0);  // degenerate warm start; the loop repairs it
 
   std::vector<std::size_t> violators, on_circle, flagged, list;

@@ -18,6 +18,7 @@
 #include <span>
 
 #include "internal/angular_walk.h"
+#include "internal/extremal_circle.h"
 #include "internal/prevalidated.h"
 
 namespace vcmm::geometry {
@@ -121,17 +122,25 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
       out.minimum_zone = internal::fit_minimum_zone_circle(profile, request.minimum_zone_options);
     });
   }
+  // MI and MC start from the same stride sample (internal::sector_sample): taken once.
+  std::optional<internal::SectorSample> sample;
+  const auto shared_sample = [&]() -> const internal::SectorSample* {
+    if (!(request.maximum_inscribed && request.minimum_circumscribed)) return nullptr;
+    if (!sample) sample = internal::sector_sample(profile);
+    return &*sample;
+  };
   if (request.maximum_inscribed) {
     if (!validated) validate_profile(profile, 3, "maximum_inscribed_circle");
     validated = true;
     fit_or_record(out, ReferenceCircle::maximum_inscribed, [&] {
-      out.maximum_inscribed = internal::fit_maximum_inscribed_circle(profile);
+      out.maximum_inscribed = internal::fit_maximum_inscribed_circle(profile, shared_sample());
     });
   }
   if (request.minimum_circumscribed) {
     if (!validated) validate_profile(profile, 2, "minimum_circumscribed_circle", false);
     fit_or_record(out, ReferenceCircle::minimum_circumscribed, [&] {
-      out.minimum_circumscribed = internal::fit_minimum_circumscribed_circle(profile);
+      out.minimum_circumscribed =
+          internal::fit_minimum_circumscribed_circle(profile, shared_sample());
     });
   }
   // Coverage about the centre of the first circle found (the filtered points lie on the rays

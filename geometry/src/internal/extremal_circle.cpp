@@ -237,6 +237,45 @@ WarmStart kasa_center(std::span<const Point2> points) {
   return {c, sc};
 }
 
+SectorSample sector_sample(std::span<const Point2> points) {
+  const std::size_t n = points.size();
+  SectorSample out;
+  out.warm = kasa_center(points);
+  const Point2 c0 = out.warm.center;
+  out.stride = std::max<std::size_t>(1, n / 512);
+  out.sectors = std::clamp<std::size_t>(n / out.stride / 8, 4, 64);
+  out.nearest.assign(out.sectors, n);
+  out.farthest.assign(out.sectors, n);
+  // Per sector the extreme squared distances so far (strict comparisons: the first sample
+  // point of an extreme value is kept), on (p − c0)·s0 (s0 a power of two: coordinates O(1)
+  // whatever the input magnitude; the sectors are invariant under the scaling).
+  std::array<double, 64> near, far;
+  near.fill(std::numeric_limits<double>::infinity());
+  far.fill(-1.0);
+  const double scale = static_cast<double>(out.sectors) / 4.0;
+  const double s0 = out.warm.scale;
+  for (std::size_t i = 0; i < n; i += out.stride) {
+    const double dx = (points[i].x - c0.x) * s0, dy = (points[i].y - c0.y) * s0;
+    const double d2 = dx * dx + dy * dy;
+    const double phi = pseudo_angle(dx, dy);  // in [0, 4]
+    // Truncation of values in [0, 256] (4 − tiny may round up to 4: clamp).
+    auto bucket = static_cast<unsigned>(phi * 64.0);
+    if (bucket > 255u) bucket = 255u;
+    out.occupied[bucket >> 6] |= std::uint64_t{1} << (bucket & 63u);
+    auto s = static_cast<std::size_t>(phi * scale);
+    if (s >= out.sectors) s = out.sectors - 1;
+    if (d2 < near[s]) {
+      near[s] = d2;
+      out.nearest[s] = i;
+    }
+    if (d2 > far[s]) {
+      far[s] = d2;
+      out.farthest[s] = i;
+    }
+  }
+  return out;
+}
+
 ExactCircle exact_point_circle(Point2 a) {
   ExactCircle c;
   c.support_size = 1;

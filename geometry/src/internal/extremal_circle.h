@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <span>
@@ -37,6 +38,21 @@ struct WarmStart {
   double scale = 1.0;  ///< power of two making (p − center)·scale O(1) over the sample
 };
 WarmStart kasa_center(std::span<const Point2> points);
+
+/// The warm start of the MC and MI fast paths, from one stride sample of ~512 points (every
+/// max(1, ⌊n/512⌋)-th): the Kåsa centre c₀ (kasa_center) and, per pseudo-angle sector about
+/// it (`sectors` = clamp(samples/8, 4, 64) of them, sector ⌊pseudo_angle·sectors/4⌋ of
+/// (p − c₀)·scale), the first sample point nearest to c₀ (MI's candidates) and the first
+/// farthest (MC's), n for an empty sector; and 256 occupancy buckets (bucket
+/// ⌊pseudo_angle·64⌋, MI's global proof). evaluate_roundness takes it once for both fitters;
+/// each fitter takes its own otherwise. O(min(n, 512)) with a division per sample point.
+struct SectorSample {
+  WarmStart warm;
+  std::size_t stride = 1, sectors = 0;
+  std::vector<std::size_t> nearest, farthest;
+  std::array<std::uint64_t, 4> occupied{};
+};
+SectorSample sector_sample(std::span<const Point2> points);
 
 /// A power of two s with max(|px − cx|, |py − cy|)·s ∈ [0.5, 1) over the stride sample, so
 /// that warm-start arithmetic on (p − c)·s neither overflows nor underflows for any input

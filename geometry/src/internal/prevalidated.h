@@ -25,12 +25,19 @@ LeastSquaresCircle fit_least_squares_circle(std::span<const Point2> points);
 MinimumZoneCircle fit_minimum_zone_circle(std::span<const Point2> points,
                                           const MinimumZoneOptions& options);
 
+struct SectorSample;  // internal/extremal_circle.h
+
 /// maximum_inscribed_circle(points) without validate_profile; precondition as above.
-MaximumInscribedCircle fit_maximum_inscribed_circle(std::span<const Point2> points);
+/// `sample`: internal::sector_sample(points) when the caller has it (evaluate_roundness
+/// takes it once for MI and MC), else taken here.
+MaximumInscribedCircle fit_maximum_inscribed_circle(std::span<const Point2> points,
+                                                    const SectorSample* sample = nullptr);
 
 /// minimum_circumscribed_circle(points) without validate_profile. Precondition (not
 /// checked): validate_profile(points, 2, …, false) — ≥ 2 finite points, not all identical.
-MinimumCircumscribedCircle fit_minimum_circumscribed_circle(std::span<const Point2> points);
+/// `sample` as for fit_maximum_inscribed_circle.
+MinimumCircumscribedCircle fit_minimum_circumscribed_circle(std::span<const Point2> points,
+                                                            const SectorSample* sample = nullptr);
 
 /// roundness_parameters(points, center, reference_radius) without its checks.
 /// deviation_bound: the largest |r_i − R| expected (e.g. the circle's RONt), which picks the

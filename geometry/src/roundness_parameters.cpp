@@ -60,41 +60,63 @@ struct NearSums {
 using V4 = internal::VecOf<4>::type;  // internal/vec.h
 using M4 = internal::VecOf<4>::mask;
 
-template <int kDegree>
+/// The near-circle evaluation over points [0, n) with W = 4 lanes (points 0, 2, 1, 3 of a
+/// step: the unpack order) or W = 8 (points in order); either way Σ d² in the four partial
+/// sums by point residue mod 4, then (s₀ + s₁) + (s₂ + s₃) and the last n mod 4 points in
+/// order — the same operations on every value whatever W.
+template <int kDegree, int W>
 [[gnu::always_inline]] inline bool near_sums_body(const Point2* p, std::size_t n, Point2 c,
                                                    double reference_radius, double inv_scale,
                                                    const internal::NearCircle& k,
                                                    NearSums& out) {
+  using V = typename internal::VecOf<W>::type;  // internal/vec.h
+  using M = typename internal::VecOf<W>::mask;
   const double* xy = reinterpret_cast<const double*>(p);
-  const V4 cx = V4{} + c.x, cy = V4{} + c.y, r0 = V4{} + k.r0, inv = V4{} + inv_scale;
-  const V4 ref = V4{} + reference_radius;
-  V4 smax = V4{}, smin = V4{}, rmax = V4{} - std::numeric_limits<double>::infinity();
-  V4 rmin = V4{} + std::numeric_limits<double>::infinity(), sum = V4{};
+  const V cx = V{} + c.x, cy = V{} + c.y, r0 = V{} + k.r0, inv = V{} + inv_scale;
+  const V ref = V{} + reference_radius;
+  V smax = V{}, smin = V{}, rmax = V{} - std::numeric_limits<double>::infinity();
+  V rmin = V{} + std::numeric_limits<double>::infinity();
+  V4 sum = V4{};  // lanes: residues 0, 2, 1, 3 (W = 4) or 0, 1, 2, 3 (W = 8)
   std::size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    V4 a, b;
-    __builtin_memcpy(&a, xy + 2 * i, sizeof a);      // x0 y0 x1 y1
-    __builtin_memcpy(&b, xy + 2 * i + 4, sizeof b);  // x2 y2 x3 y3
-    const V4 dx = __builtin_shuffle(a, b, M4{0, 4, 2, 6}) - cx;  // points 0, 2, 1, 3
-    const V4 dy = __builtin_shuffle(a, b, M4{1, 5, 3, 7}) - cy;
-    const V4 s = internal::near_circle_s(dx * dx + dy * dy, k);
-    const V4 off = internal::near_circle_offset<kDegree>(s, k);
+  for (; i + W <= n; i += W) {
+    V a, b;
+    __builtin_memcpy(&a, xy + 2 * i, sizeof a);      // x0 y0 x1 y1 …
+    __builtin_memcpy(&b, xy + 2 * i + W, sizeof b);  // … the second half
+    V dx, dy;
+    if constexpr (W == 4) {
+      dx = __builtin_shuffle(a, b, M{0, 4, 2, 6}) - cx;  // points 0, 2, 1, 3
+      dy = __builtin_shuffle(a, b, M{1, 5, 3, 7}) - cy;
+    } else {
+      dx = __builtin_shuffle(a, b, M{0, 2, 4, 6, 8, 10, 12, 14}) - cx;  // points 0 … 7
+      dy = __builtin_shuffle(a, b, M{1, 3, 5, 7, 9, 11, 13, 15}) - cy;
+    }
+    const V s = internal::near_circle_s(dx * dx + dy * dy, k);
+    const V off = internal::near_circle_offset<kDegree>(s, k);
     smax = s > smax ? s : smax;  // q = +∞ (overflow) gives s = +∞: refused below
     smin = s < smin ? s : smin;
-    const V4 r = r0 + off;
+    const V r = r0 + off;
     rmax = r > rmax ? r : rmax;
     rmin = r < rmin ? r : rmin;
-    const V4 d = (r - ref) * inv;
-    sum += d * d;  // lanes: points i + 0, 2, 1, 3 (mod 4)
+    const V d = (r - ref) * inv;
+    const V dd = d * d;
+    if constexpr (W == 4) {
+      sum += dd;
+    } else {
+      V4 half[2];
+      __builtin_memcpy(half, &dd, sizeof half);
+      sum += half[0];
+      sum += half[1];
+    }
   }
-  double s_max = std::max({smax[0], smax[1], smax[2], smax[3], -smin[0], -smin[1], -smin[2],
-                           -smin[3]});
-  double r_max = std::max(std::max(rmax[0], rmax[1]), std::max(rmax[2], rmax[3]));
-  double r_min = std::min(std::min(rmin[0], rmin[1]), std::min(rmin[2], rmin[3]));
-  // (s₀ + s₁) + (s₂ + s₃) by point residue: lanes 0, 2 hold residues 0, 1; lanes 1, 3: 2, 3.
-  double sum_dd = (sum[0] + sum[2]) + (sum[1] + sum[3]);
-  for (; i < n; ++i) {
-    const double dx = p[i].x - c.x, dy = p[i].y - c.y;
+  double s_max = 0.0, r_max = -std::numeric_limits<double>::infinity();
+  double r_min = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < W; ++j) {
+    s_max = std::max({s_max, smax[j], -smin[j]});
+    r_max = std::max(r_max, rmax[j]);
+    r_min = std::min(r_min, rmin[j]);
+  }
+  const auto point = [&](std::size_t j) {  // one point: s, r and d²
+    const double dx = p[j].x - c.x, dy = p[j].y - c.y;
     const double s = internal::near_circle_s(dx * dx + dy * dy, k);
     const double off = internal::near_circle_offset<kDegree>(s, k);
     s_max = std::max(s_max, std::fabs(s));
@@ -102,8 +124,18 @@ template <int kDegree>
     r_max = std::max(r_max, r);
     r_min = std::min(r_min, r);
     const double d = (r - reference_radius) * inv_scale;
-    sum_dd += d * d;
+    return d * d;
+  };
+  // W = 8: a last whole four into the partial sums, lane by lane as the vector step adds.
+  if (W == 8 && i + 4 <= n) {
+    for (int j = 0; j < 4; ++j) sum[j] += point(i + j);
+    i += 4;
   }
+  // (s₀ + s₁) + (s₂ + s₃) by point residue: W = 4 lanes 0, 2 hold residues 0, 1 and lanes
+  // 1, 3 hold 2, 3; W = 8 lanes are residues.
+  double sum_dd = W == 4 ? (sum[0] + sum[2]) + (sum[1] + sum[3])
+                         : (sum[0] + sum[1]) + (sum[2] + sum[3]);
+  for (; i < n; ++i) sum_dd += point(i);
   if (!(s_max <= internal::near_circle_s_max(kDegree))) return false;  // also NaN
   out = {r_max, r_min, sum_dd};
   return true;
@@ -111,7 +143,7 @@ template <int kDegree>
 template <int kDegree>
 bool near_sums_baseline(const Point2* p, std::size_t n, Point2 c, double reference_radius,
                         double inv_scale, const internal::NearCircle& k, NearSums& out) {
-  return near_sums_body<kDegree>(p, n, c, reference_radius, inv_scale, k, out);
+  return near_sums_body<kDegree, 4>(p, n, c, reference_radius, inv_scale, k, out);
 }
 #if VCMM_GEOMETRY_X86
 template <int kDegree>
@@ -119,13 +151,22 @@ __attribute__((target("avx2"))) bool near_sums_avx2(const Point2* p, std::size_t
                                                     double reference_radius, double inv_scale,
                                                     const internal::NearCircle& k,
                                                     NearSums& out) {
-  return near_sums_body<kDegree>(p, n, c, reference_radius, inv_scale, k, out);
+  return near_sums_body<kDegree, 4>(p, n, c, reference_radius, inv_scale, k, out);
+}
+template <int kDegree>
+__attribute__((target("avx512f,avx512dq,avx512vl"))) bool near_sums_avx512(
+    const Point2* p, std::size_t n, Point2 c, double reference_radius, double inv_scale,
+    const internal::NearCircle& k, NearSums& out) {
+  return near_sums_body<kDegree, 8>(p, n, c, reference_radius, inv_scale, k, out);
 }
 #endif
 template <int kDegree>
 bool near_sums_of_degree(std::span<const Point2> points, Point2 c, double reference_radius,
                          double inv_scale, const internal::NearCircle& k, NearSums& out) {
 #if VCMM_GEOMETRY_X86
+  if (internal::use_avx512())
+    return near_sums_avx512<kDegree>(points.data(), points.size(), c, reference_radius,
+                                     inv_scale, k, out);
   if (internal::use_avx2())
     return near_sums_avx2<kDegree>(points.data(), points.size(), c, reference_radius, inv_scale,
                                    k, out);

@@ -148,6 +148,8 @@ struct PassResult {
   std::size_t farthest = 0;            ///< argmax of D̃ (scaled units, see scan_distances)
   double max_d2 = 0.0;
   std::size_t exact_calls = 0;
+  /// RONq's sums about the circle, taken in the same pass (used when it is the last).
+  internal::RonqSums ronq;
 };
 
 PassResult classify_all(std::span<const Point2> points, const ExactCircle& circle) {
@@ -157,8 +159,10 @@ PassResult classify_all(std::span<const Point2> points, const ExactCircle& circl
   flagged.reserve(1024);
   const double hi = circle.filter_usable ? circle.outside_above
                                          : std::numeric_limits<double>::infinity();
+  r.ronq.radius = circle.radius;
+  r.ronq.inv_scale = internal::ronq_inv_scale(points, c, circle.radius);
   const internal::DistanceScan scan = internal::scan_distances<internal::Track::kFarthest>(
-      points, c, circle.scale, hi, flagged);
+      points, c, circle.scale, hi, flagged, &r.ronq);
   r.farthest = scan.index;
   r.max_d2 = scan.d2;
   const double r2s = circle.radius_scaled * circle.radius_scaled;
@@ -184,7 +188,8 @@ PassResult classify_all(std::span<const Point2> points, const ExactCircle& circl
 MaximumInscribedCircle make_result(std::span<const Point2> points, const ExactCircle& circle,
                                    const std::array<std::size_t, 3>& contacts,
                                    std::size_t farthest, double max_d2,
-                                   Certificate certificate) {
+                                   Certificate certificate,
+                                   const internal::RonqSums* ronq = nullptr) {
   MaximumInscribedCircle mi;
   mi.center = circle.center_d;
   mi.radius = circle.radius;
@@ -194,8 +199,11 @@ MaximumInscribedCircle make_result(std::span<const Point2> points, const ExactCi
   const double ront = gap_s > 0.0 ? std::ldexp(gap_s / (std::sqrt(max_d2) + circle.radius_scaled),
                                                -circle.scale_exponent)
                                   : 0.0;
-  // RONq (RONt bounds every deviation from the radius: it picks the distance series' degree).
-  mi.ron = internal::roundness_parameters_of_valid(points, mi.center, mi.radius, ront);
+  // RONq (RONt bounds every deviation from the radius: it picks the distance series'
+  // degree), from the sums of the circle's pass when it took them.
+  mi.ron.ronq = ronq ? internal::ronq_of_valid(points, mi.center, mi.radius, ront, *ronq)
+                     : internal::roundness_parameters_of_valid(points, mi.center, mi.radius,
+                                                               ront).ronq;
   mi.ron.ront = ront;
   mi.ron.ronp = mi.ron.ront;
   mi.ron.ronv = 0.0;
@@ -752,7 +760,7 @@ std::optional<MaximumInscribedCircle> fast_path(std::span<const Point2> points,
       const double t1 = std::ldexp(region.t1, -circle.scale_exponent);  // back to mm
       Certificate cert{Optimality::global, arg.str(), t1};
       return make_result(points, circle, contacts, pass.farthest, pass.max_d2,
-                         std::move(cert));
+                         std::move(cert), &pass.ronq);
     }
     if (!std::isfinite(region.radius)) return std::nullopt;
     const std::optional<LocalOutcome> local =

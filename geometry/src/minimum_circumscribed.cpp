@@ -314,6 +314,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
   std::size_t rounds = 0, exact_calls = 0;
   std::size_t nearest = 0;
   double nearest_d2 = 0.0;
+  internal::RonqSums ronq;
   Point2 order_center = c0;
   std::size_t refinements = 0;  // local refinements (no O(n) pass)
   constexpr std::size_t kMaxRefinements = 1;
@@ -360,8 +361,10 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
     const Point2 cd = circle.center_d;
     const double lo = circle.filter_usable ? circle.inside_below
                                            : -std::numeric_limits<double>::infinity();
+    ronq.radius = circle.radius;  // RONq's sums in the same pass (used for the last one)
+    ronq.inv_scale = internal::ronq_inv_scale(points, cd, circle.radius);
     const internal::DistanceScan scan = internal::scan_distances<internal::Track::kNearest>(
-        points, cd, circle.scale, lo, flagged);
+        points, cd, circle.scale, lo, flagged, &ronq);
     nearest = scan.index;
     nearest_d2 = scan.d2;
     // Violators with a ranking key: how far outside (scaled squared units) — the double-
@@ -435,8 +438,9 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
   const double ront = gap_s > 0.0 ? std::ldexp(gap_s / (circle.radius_scaled + rho_s),
                                                -circle.scale_exponent)
                                   : 0.0;
-  // RONq (RONt bounds every deviation from the radius: it picks the distance series' degree).
-  mc.ron = internal::roundness_parameters_of_valid(points, mc.center, mc.radius, ront);
+  // RONq (RONt bounds every deviation from the radius: it picks the distance series'
+  // degree), from the sums of the last pass, about this circle.
+  mc.ron.ronq = internal::ronq_of_valid(points, mc.center, mc.radius, ront, ronq);
   mc.ron.ront = ront;
   mc.ron.ronv = mc.ron.ront;
   mc.ron.ronp = 0.0;

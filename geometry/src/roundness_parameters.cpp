@@ -30,6 +30,7 @@
 #include <limits>
 #include <sstream>
 
+#include "internal/distance_scan.h"
 #include "internal/isa.h"
 #include "internal/near_circle.h"
 #include "internal/prevalidated.h"
@@ -209,15 +210,39 @@ RoundnessParameters roundness_parameters(std::span<const Point2> points, Point2 
   return internal::roundness_parameters_of_valid(points, center, reference_radius);
 }
 
+namespace {
+/// d_i² is summed as (d_i·2^−e)² with 2^e the scale of the radius (an exact rescaling), so
+/// RONq neither overflows for huge coordinates nor underflows for tiny ones: e.
+int ronq_exponent(std::span<const Point2> points, Point2 center, double reference_radius) {
+  const double size = std::max(std::fabs(reference_radius),
+                               distance(points[0].x - center.x, points[0].y - center.y));
+  return size > 0.0 && std::isfinite(size) ? std::ilogb(size) : 0;
+}
+}  // namespace
+
+double internal::ronq_inv_scale(std::span<const Point2> points, Point2 center,
+                                double reference_radius) {
+  return std::ldexp(1.0, -ronq_exponent(points, center, reference_radius));
+}
+
+double internal::ronq_of_valid(std::span<const Point2> points, Point2 center,
+                               double reference_radius, double deviation_bound,
+                               const RonqSums& sums) {
+  // The sums of a scan's pass are near_sums' of degree 3 (internal/distance_scan.h): RONq's
+  // when that is the degree taken here and it held for every point.
+  const int e = ronq_exponent(points, center, reference_radius);
+  if (internal::near_circle_degree_for(reference_radius, deviation_bound) == 3 &&
+      sums.radius == reference_radius && sums.inv_scale == std::ldexp(1.0, -e) &&
+      sums.s_max <= internal::near_circle_s_max(3))
+    return std::ldexp(std::sqrt(sums.sum_dd / static_cast<double>(points.size())), e);
+  return roundness_parameters_of_valid(points, center, reference_radius, deviation_bound).ronq;
+}
+
 RoundnessParameters internal::roundness_parameters_of_valid(std::span<const Point2> points,
                                                             Point2 center,
                                                             double reference_radius,
                                                             double deviation_bound) {
-  // d_i² is summed as (d_i·2^−e)² with 2^e the scale of the radius (an exact rescaling), so
-  // RONq neither overflows for huge coordinates nor underflows for tiny ones.
-  const double size = std::max(std::fabs(reference_radius),
-                               distance(points[0].x - center.x, points[0].y - center.y));
-  const int e = size > 0.0 && std::isfinite(size) ? std::ilogb(size) : 0;
+  const int e = ronq_exponent(points, center, reference_radius);
   const double inv_scale = std::ldexp(1.0, -e);  // multiplying by it is exact
   const std::size_t n = points.size();
   NearSums near{};

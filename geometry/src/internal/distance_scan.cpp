@@ -13,10 +13,14 @@
 // variant runs. Flags: one mask test per step, the rare set bits pushed in point order.
 #include "internal/distance_scan.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "internal/isa.h"
+#include "internal/near_circle.h"
 #include "internal/vec.h"
 
 namespace vcmm::geometry::internal {
@@ -62,10 +66,19 @@ template <int W>
   }
 }
 
+/// RONq's near-circle sums in a pass (RonqSums): the series' constants and the reference.
+struct RonqIn {
+  NearCircle k;
+  double radius = 0.0, inv_scale = 1.0;
+};
+struct RonqOut {
+  double sum_dd = 0.0, s_max = 0.0;
+};
+
 /// What a pass tracks: the smallest and/or the largest value; flags: none, D̃ ≥ threshold
 /// (+1) or D̃ ≤ threshold (−1); kScaled: the differences are multiplied by `scale` (else the
-/// scale is 1 and the products, exact, are skipped).
-template <bool kMin, bool kMax, int kFlag, bool kScaled>
+/// scale is 1 and the products, exact, are skipped); kRonq: RONq's sums too (RonqSums).
+template <bool kMin, bool kMax, int kFlag, bool kScaled, bool kRonq = false>
 struct Pass {
   static constexpr double kNoMin = std::numeric_limits<double>::infinity();
   static constexpr double kNoMax = -1.0;
@@ -78,7 +91,9 @@ struct Pass {
   template <int W>
   [[gnu::always_inline]] static inline Out run(const Point2* p, std::size_t lo, std::size_t hi,
                                                Point2 c, double scale, double threshold,
-                                               std::vector<std::size_t>* flagged) {
+                                               std::vector<std::size_t>* flagged,
+                                               const RonqIn* rq = nullptr,
+                                               RonqOut* ro = nullptr) {
     static_assert(sizeof(Point2) == 2 * sizeof(double), "Point2: two packed doubles");
     using L = Lanes<W>;
     using V = typename L::V;
@@ -92,6 +107,11 @@ struct Pass {
     M at[2] = {L::kPoint + l, L::kPoint + (l + W)};  // the point of each lane
     V bmin[2] = {V{} + kNoMin, V{} + kNoMin}, bmax[2] = {V{} + kNoMax, V{} + kNoMax};
     M amin[2] = {at[0], at[1]}, amax[2] = {at[0], at[1]};
+    // RONq: as roundness_parameters.cpp's near_sums (degree 3): Σ d² in four partial sums by
+    // point residue mod 4 (lo is 0 for these passes), the extremes of s per lane.
+    using Sum4 = VecOf<4>::type;
+    Sum4 ronq_sum = {};
+    V s_hi = {}, s_lo = {};
     std::size_t i = lo;
     for (; i + 2 * W <= hi; i += 2 * W) {
       M flag[2];
@@ -102,6 +122,21 @@ struct Pass {
         const V x = __builtin_shuffle(a, b, L::kX);
         const V y = __builtin_shuffle(a, b, L::kY);
         V dx = x - cx, dy = y - cy;
+        if constexpr (kRonq) {
+          const V sv = near_circle_s(dx * dx + dy * dy, rq->k);
+          s_hi = sv > s_hi ? sv : s_hi;
+          s_lo = sv < s_lo ? sv : s_lo;
+          const V d = ((rq->k.r0 + near_circle_offset<3>(sv, rq->k)) - rq->radius) * rq->inv_scale;
+          const V dd = d * d;
+          if constexpr (W == 4) {
+            ronq_sum += dd;  // lanes: residues 0, 2, 1, 3
+          } else {
+            Sum4 half[2];
+            __builtin_memcpy(half, &dd, sizeof half);
+            ronq_sum += half[0];
+            ronq_sum += half[1];
+          }
+        }
         if constexpr (kScaled) {
           dx *= s;
           dy *= s;
@@ -151,7 +186,28 @@ struct Pass {
         }
       }
     if (i == lo) out.imin = out.imax = lo;  // no whole step: the plain loop's start
+    // RONq: the partial sums by residue, then the rest point by point in near_sums' order.
+    double by_residue[4] = {}, s_max = 0.0;
+    if constexpr (kRonq) {
+      for (int r = 0; r < 4; ++r) by_residue[r] = ronq_sum[W == 4 ? (r == 1 ? 2 : r == 2 ? 1 : r) : r];
+      for (int k = 0; k < W; ++k) s_max = std::max({s_max, s_hi[k], -s_lo[k]});
+    }
+    const std::size_t whole4 = hi - hi % 4;
+    double sum_dd = 0.0;
+    bool combined = false;
     for (; i < hi; ++i) {
+      if constexpr (kRonq) {
+        if (i >= whole4 && !combined) {
+          sum_dd = (by_residue[0] + by_residue[1]) + (by_residue[2] + by_residue[3]);
+          combined = true;
+        }
+        const double ux = p[i].x - c.x, uy = p[i].y - c.y;
+        const double sv = near_circle_s(ux * ux + uy * uy, rq->k);
+        s_max = std::max(s_max, std::fabs(sv));
+        const double d = ((rq->k.r0 + near_circle_offset<3>(sv, rq->k)) - rq->radius) * rq->inv_scale;
+        if (combined) sum_dd += d * d;
+        else by_residue[i % 4] += d * d;
+      }
       const double dx = (p[i].x - c.x) * scale, dy = (p[i].y - c.y) * scale;
       const double d2 = dx * dx + dy * dy;
       if (kMin && d2 < out.smin) {
@@ -165,12 +221,18 @@ struct Pass {
       if (kFlag > 0 && d2 >= threshold) flagged->push_back(i);
       if (kFlag < 0 && d2 <= threshold) flagged->push_back(i);
     }
+    if constexpr (kRonq) {
+      if (!combined) sum_dd = (by_residue[0] + by_residue[1]) + (by_residue[2] + by_residue[3]);
+      *ro = {sum_dd, s_max};
+    }
     return out;
   }
 };
 
 using NearestPass = Pass<true, false, +1, true>;
 using FarthestPass = Pass<false, true, -1, true>;
+using NearestRonqPass = Pass<true, false, +1, true, true>;
+using FarthestRonqPass = Pass<false, true, -1, true, true>;
 using ExtremesPass = Pass<true, true, 0, false>;
 
 // Each pass compiled for the baseline ISA, for AVX2 and for AVX-512 (chosen per call,
@@ -179,54 +241,68 @@ using ExtremesPass = Pass<true, true, 0, false>;
 // lanes.
 template <class P>
 typename P::Out run_baseline(const Point2* p, std::size_t lo, std::size_t hi, Point2 c,
-                             double scale, double threshold, std::vector<std::size_t>* flagged) {
-  return P::template run<4>(p, lo, hi, c, scale, threshold, flagged);
+                             double scale, double threshold, std::vector<std::size_t>* flagged,
+                             const RonqIn* rq, RonqOut* ro) {
+  return P::template run<4>(p, lo, hi, c, scale, threshold, flagged, rq, ro);
 }
 #if VCMM_GEOMETRY_X86
 template <class P>
 __attribute__((target("avx2"))) typename P::Out run_avx2(const Point2* p, std::size_t lo,
                                                          std::size_t hi, Point2 c,
                                                          double scale, double threshold,
-                                                         std::vector<std::size_t>* flagged) {
-  return P::template run<4>(p, lo, hi, c, scale, threshold, flagged);
+                                                         std::vector<std::size_t>* flagged,
+                                                         const RonqIn* rq, RonqOut* ro) {
+  return P::template run<4>(p, lo, hi, c, scale, threshold, flagged, rq, ro);
 }
 template <class P>
 __attribute__((target("avx512f,avx512dq,avx512vl"))) typename P::Out run_avx512(
     const Point2* p, std::size_t lo, std::size_t hi, Point2 c, double scale, double threshold,
-    std::vector<std::size_t>* flagged) {
-  return P::template run<8>(p, lo, hi, c, scale, threshold, flagged);
+    std::vector<std::size_t>* flagged, const RonqIn* rq, RonqOut* ro) {
+  return P::template run<8>(p, lo, hi, c, scale, threshold, flagged, rq, ro);
 }
 #endif
 template <class P>
 typename P::Out run(const Point2* p, std::size_t lo, std::size_t hi, Point2 c, double scale,
-                    double threshold, std::vector<std::size_t>* flagged) {
+                    double threshold, std::vector<std::size_t>* flagged,
+                    const RonqIn* rq = nullptr, RonqOut* ro = nullptr) {
 #if VCMM_GEOMETRY_X86
-  if (use_avx512()) return run_avx512<P>(p, lo, hi, c, scale, threshold, flagged);
-  if (use_avx2()) return run_avx2<P>(p, lo, hi, c, scale, threshold, flagged);
+  if (use_avx512()) return run_avx512<P>(p, lo, hi, c, scale, threshold, flagged, rq, ro);
+  if (use_avx2()) return run_avx2<P>(p, lo, hi, c, scale, threshold, flagged, rq, ro);
 #endif
-  return run_baseline<P>(p, lo, hi, c, scale, threshold, flagged);
+  return run_baseline<P>(p, lo, hi, c, scale, threshold, flagged, rq, ro);
 }
 
 }  // namespace
 
 template <Track kTrack>
 DistanceScan scan_distances(std::span<const Point2> points, Point2 c, double scale,
-                            double threshold, std::vector<std::size_t>& flagged) {
-  if constexpr (kTrack == Track::kNearest) {
-    const auto o = run<NearestPass>(points.data(), 0, points.size(), c, scale, threshold,
-                                    &flagged);
-    return {o.smin, o.imin};
-  } else {
-    const auto o = run<FarthestPass>(points.data(), 0, points.size(), c, scale, threshold,
-                                     &flagged);
-    return {o.smax, o.imax};
+                            double threshold, std::vector<std::size_t>& flagged,
+                            RonqSums* ronq) {
+  constexpr bool kNear = kTrack == Track::kNearest;
+  using Plain = std::conditional_t<kNear, NearestPass, FarthestPass>;
+  using WithRonq = std::conditional_t<kNear, NearestRonqPass, FarthestRonqPass>;
+  const auto extreme = [](const auto& o) {
+    return kNear ? DistanceScan{o.smin, o.imin} : DistanceScan{o.smax, o.imax};
+  };
+  if (ronq && near_circle_radius_ok(ronq->radius)) {
+    const RonqIn in{near_circle_about(ronq->radius), ronq->radius, ronq->inv_scale};
+    RonqOut sums;
+    const auto o = run<WithRonq>(points.data(), 0, points.size(), c, scale, threshold,
+                                 &flagged, &in, &sums);
+    ronq->sum_dd = sums.sum_dd;
+    ronq->s_max = sums.s_max;
+    return extreme(o);
   }
+  if (ronq) ronq->s_max = std::numeric_limits<double>::infinity();  // nothing summed
+  return extreme(run<Plain>(points.data(), 0, points.size(), c, scale, threshold, &flagged));
 }
 
 template DistanceScan scan_distances<Track::kNearest>(std::span<const Point2>, Point2, double,
-                                                      double, std::vector<std::size_t>&);
+                                                      double, std::vector<std::size_t>&,
+                                                      RonqSums*);
 template DistanceScan scan_distances<Track::kFarthest>(std::span<const Point2>, Point2, double,
-                                                       double, std::vector<std::size_t>&);
+                                                       double, std::vector<std::size_t>&,
+                                                       RonqSums*);
 
 DistanceExtremes distance_extremes(std::span<const Point2> points, std::size_t lo,
                                    std::size_t hi, Point2 c) {

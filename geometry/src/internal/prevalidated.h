@@ -48,6 +48,19 @@ RoundnessParameters roundness_parameters_of_valid(
     std::span<const Point2> points, Point2 center, double reference_radius,
     double deviation_bound = std::numeric_limits<double>::quiet_NaN());
 
+struct RonqSums;  // internal/distance_scan.h
+
+/// The power of two by which roundness_parameters scales the deviations it sums for RONq
+/// about (center, reference_radius): the RonqSums input of a scan that takes them.
+double ronq_inv_scale(std::span<const Point2> points, Point2 center, double reference_radius);
+
+/// roundness_parameters_of_valid(points, center, reference_radius, deviation_bound).ronq,
+/// bit for bit: from `sums` (taken in a scan's pass about the same centre, radius and
+/// scale) when they are the sums it would take — the series of degree 3 and every point in
+/// its range — otherwise by that call.
+double ronq_of_valid(std::span<const Point2> points, Point2 center, double reference_radius,
+                     double deviation_bound, const RonqSums& sums);
+
 /// gaussian_filtered_profile(points, cutoff_upr, least_squares, out, filtered_least_squares)
 /// without validate_profile, and false instead of its "profile is not closed" InvalidInput
 /// (`out` is then unusable): the closed filter, or the verdict that the profile has an

@@ -4,9 +4,12 @@
 // (the MZ fitter's per-block seeding and pricing) the same first nearest and farthest points
 // of every index range, bit for bit, in both ISA variants (AVX2 and baseline), for sizes
 // 1 … 40 (every tail length), duplicated points (ties in every lane), thresholds that flag
-// none, some and all points. Fixed seeds.
+// none, some and all points; and RONq's sums taken in a scan's pass give roundness_parameters'
+// RONq bit for bit (every size 3 … 40 and 3600, both variants), and are refused where that
+// evaluation would not take them. Fixed seeds.
 #include "internal/distance_scan.h"
 #include "internal/isa.h"
+#include "internal/prevalidated.h"
 
 #include <gtest/gtest.h>
 
@@ -137,6 +140,56 @@ TEST(DistanceScan, AllPointsEqualReportIndexZero) {
   const std::vector<Point2> p(9, Point2{1.0, 2.0});
   expect_plain<internal::Track::kNearest>(p, {0.0, 0.0}, 1.0, 0.0, "identical");
   expect_plain<internal::Track::kFarthest>(p, {0.0, 0.0}, 1.0, 0.0, "identical");
+}
+
+/// RONq from the sums of a scan's pass against roundness_parameters' own evaluation about the
+/// same circle: the same bits, and the sums in use (s within the degree-3 range).
+TEST(DistanceScan, RonqSumsOfThePassEqualRoundnessParameters) {
+  std::mt19937_64 rng(20261129);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 1e-4);
+  const Point2 c{600.0, 500.0};
+  const double radius = 85.5, bound = 1e-3;  // deviations ≤ ~0.5 µm: degree 3
+  std::vector<std::size_t> sizes;
+  for (std::size_t n = 3; n <= 40; ++n) sizes.push_back(n);
+  sizes.push_back(3600);
+  for (const std::size_t n : sizes) {
+    std::vector<Point2> p(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t =
+          6.283185307179586 * (static_cast<double>(i) + unit(rng)) / static_cast<double>(n);
+      const double r = radius + noise(rng);
+      p[i] = {c.x + r * std::cos(t), c.y + r * std::sin(t)};
+    }
+    const double want =
+        internal::roundness_parameters_of_valid(p, c, radius, bound).ronq;
+    for (bool baseline : {false, true}) {
+      std::optional<internal::ForceBaselineIsa> force;
+      if (baseline) force.emplace();
+      for (const bool farthest : {false, true}) {
+        internal::RonqSums sums;
+        sums.radius = radius;
+        sums.inv_scale = internal::ronq_inv_scale(p, c, radius);
+        std::vector<std::size_t> flags;
+        if (farthest)
+          internal::scan_distances<internal::Track::kFarthest>(p, c, 1.0, 0.0, flags, &sums);
+        else
+          internal::scan_distances<internal::Track::kNearest>(p, c, 1.0, 1e300, flags, &sums);
+        EXPECT_LE(sums.s_max, 0x1p-15) << "n = " << n;
+        EXPECT_EQ(internal::ronq_of_valid(p, c, radius, bound, sums), want)
+            << "n = " << n << " baseline " << baseline << " farthest " << farthest;
+        // Sums that are not the evaluation's own are not used: another radius, or a bound
+        // that takes another degree, still give its RONq.
+        internal::RonqSums wrong = sums;
+        wrong.sum_dd *= 2.0;
+        wrong.radius = radius * (1.0 + 1e-9);
+        EXPECT_EQ(internal::ronq_of_valid(p, c, radius, bound, wrong), want) << n;
+        EXPECT_EQ(internal::ronq_of_valid(p, c, radius, 0.5, sums),
+                  internal::roundness_parameters_of_valid(p, c, radius, 0.5).ronq)
+            << n;
+      }
+    }
+  }
 }
 
 }  // namespace

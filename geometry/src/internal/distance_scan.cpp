@@ -75,6 +75,51 @@ struct RonqOut {
   double sum_dd = 0.0, s_max = 0.0;
 };
 
+/// The 2W lanes' extremes (two groups) merged: the extreme value, then the lowest index among
+/// the lanes holding it (each lane holds its first occurrence, so that is the first point of
+/// the extreme value) — two reduction trees of one compare-and-select a level, no branch.
+/// `best`, `index` are left alone when no lane holds a value (still at its initial kNo…).
+template <int W, bool kIsMin>
+[[gnu::always_inline]] inline void merge_lanes(const typename Lanes<W>::V (&v)[2],
+                                               const typename Lanes<W>::M (&a)[2],
+                                               double& best, std::size_t& index) {
+  using V = typename Lanes<W>::V;
+  using M = typename Lanes<W>::M;
+  const auto pick = [](const V& x, const V& y) {
+    if constexpr (kIsMin) return x < y ? x : y;
+    else return x > y ? x : y;
+  };
+  V m = pick(v[0], v[1]);
+  if constexpr (W == 8) m = pick(m, __builtin_shuffle(m, M{4, 5, 6, 7, 0, 1, 2, 3}));
+  if constexpr (W == 8) {
+    m = pick(m, __builtin_shuffle(m, M{2, 3, 0, 1, 6, 7, 4, 5}));
+    m = pick(m, __builtin_shuffle(m, M{1, 0, 3, 2, 5, 4, 7, 6}));
+  } else {
+    m = pick(m, __builtin_shuffle(m, M{2, 3, 0, 1}));
+    m = pick(m, __builtin_shuffle(m, M{1, 0, 3, 2}));
+  }
+  if (!(kIsMin ? m[0] < best : m[0] > best)) return;  // every lane still at its start value
+  const M none = M{} + std::numeric_limits<long long>::max();
+  const M k0 = v[0] == m ? a[0] : none, k1 = v[1] == m ? a[1] : none;
+  M k = k0 < k1 ? k0 : k1;
+  if constexpr (W == 8) {
+    k = k < __builtin_shuffle(k, M{4, 5, 6, 7, 0, 1, 2, 3})
+            ? k
+            : __builtin_shuffle(k, M{4, 5, 6, 7, 0, 1, 2, 3});
+    const M k2 = __builtin_shuffle(k, M{2, 3, 0, 1, 6, 7, 4, 5});
+    k = k < k2 ? k : k2;
+    const M k1s = __builtin_shuffle(k, M{1, 0, 3, 2, 5, 4, 7, 6});
+    k = k < k1s ? k : k1s;
+  } else {
+    const M k2 = __builtin_shuffle(k, M{2, 3, 0, 1});
+    k = k < k2 ? k : k2;
+    const M k1s = __builtin_shuffle(k, M{1, 0, 3, 2});
+    k = k < k1s ? k : k1s;
+  }
+  best = m[0];
+  index = static_cast<std::size_t>(k[0]);
+}
+
 /// What a pass tracks: the smallest and/or the largest value; flags: none, D̃ ≥ threshold
 /// (+1) or D̃ ≤ threshold (−1); kScaled: the differences are multiplied by `scale` (else the
 /// scale is 1 and the products, exact, are skipped); kRonq: RONq's sums too (RonqSums).
@@ -166,25 +211,10 @@ struct Pass {
       at[1] += step;
     }
     Out out;
-    for (int h = 0; h < 2 && i > lo; ++h)
-      for (int k = 0; k < W; ++k) {
-        if constexpr (kMin) {
-          const auto index = static_cast<std::size_t>(amin[h][k]);
-          const double v = bmin[h][k];
-          if (v < out.smin || (v == out.smin && index < out.imin)) {
-            out.smin = v;
-            out.imin = index;
-          }
-        }
-        if constexpr (kMax) {
-          const auto index = static_cast<std::size_t>(amax[h][k]);
-          const double v = bmax[h][k];
-          if (v > out.smax || (v == out.smax && index < out.imax)) {
-            out.smax = v;
-            out.imax = index;
-          }
-        }
-      }
+    if (i > lo) {
+      if constexpr (kMin) merge_lanes<W, true>(bmin, amin, out.smin, out.imin);
+      if constexpr (kMax) merge_lanes<W, false>(bmax, amax, out.smax, out.imax);
+    }
     if (i == lo) out.imin = out.imax = lo;  // no whole step: the plain loop's start
     // RONq: the partial sums by residue, then the rest point by point in near_sums' order.
     double by_residue[4] = {}, s_max = 0.0;

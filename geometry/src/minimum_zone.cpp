@@ -1029,6 +1029,12 @@ class ChebyshevLp {
     return true;
   }
 
+  /// Adds the point as a column of the given kind (linearised at the current c0); false if
+  /// it is one already.
+  bool add_point(std::size_t point, bool outer) { return add_candidate({point, outer}); }
+  /// Whether costs and pricing are double-double (a thin zone).
+  bool precise() const { return precise_; }
+
   /// True once, when the zone has just been found thin (pricing became precise).
   bool first_precise_round() {
     const bool first = precise_ && !precise_announced_;
@@ -1434,6 +1440,7 @@ FastPath run_fast_path(std::span<const Point2> points) {
   ChebyshevLp lp(points);
   lp.seed_candidates(c0);
   Point2 last_failed{std::numeric_limits<double>::quiet_NaN(), 0.0};
+  bool refined = false;  // the local refinement below, once
   for (int iter = 0; iter < kMaxLinearisations; ++iter) {
     if (lp.solve(c0) != LpStatus::optimal) {
       out.failure = "the linearised Chebyshev LP failed numerically";
@@ -1464,6 +1471,26 @@ FastPath run_fast_path(std::span<const Point2> points) {
     // containment pass that would fail).
     if (lp.first_precise_round() && lp.full_pricing() > 0) continue;
     const std::optional<Quad> quad = quad_of_basis(lp.basis());
+    // Local refinement before the first containment pass (as the MC and MI fitters do,
+    // internal::local_extreme): on a profile scanned in angular order a contact of the
+    // full set sits a few indices off the model's contact of the same kind, where the seeds
+    // (each block's extremes about the start) missed it; such points are the violators the
+    // pass would find. Each contact's farthest (outer) or nearest (inner) neighbour along
+    // the profile about the model's centre joins the candidates, and the model is solved
+    // again — once, on plain costs (thin zones rank by double-double pricing instead).
+    if (quad && !refined && !lp.precise()) {
+      refined = true;
+      bool grew = false;
+      for (const std::size_t o : quad->outer) {
+        const std::size_t j = internal::local_extreme<true>(points, o, c1, 1.0, n / 64, n / 8);
+        grew = (j != o && lp.add_point(j, true)) || grew;
+      }
+      for (const std::size_t i : quad->inner) {
+        const std::size_t j = internal::local_extreme<false>(points, i, c1, 1.0, n / 64, n / 8);
+        grew = (j != i && lp.add_point(j, false)) || grew;
+      }
+      if (grew) continue;
+    }
     if (quad) {
       std::optional<Certified> cert = certify(points, *quad);
       if (cert) {

@@ -48,6 +48,12 @@
 // at ρ_min/4: a trust region for partial arcs and sparse data). When the model has settled
 // and certification still fails (near-ties, e.g. symmetric lobed data), the few points
 // within a small tolerance of the extreme radii are enumerated exactly (section 4).
+// Before the first certification, each contact of the model's 2+2 is replaced, as a
+// candidate, by its farthest (outer) or nearest (inner) neighbour along the profile about
+// the model's centre (internal::local_extreme, as the MC and MI fitters do) and the model
+// solved once more: on filtered scans the seeds miss contacts a few indices off, which
+// were the violators of the first pass (issue 11: then a pricing pass and a second
+// containment pass followed).
 // Typical measured rings: one LP of ~5 pivots, one certification pass; 6% need a second.
 // Thin zones (issue 11: perfect circles, ulp-level forms — the zone narrower than 2¹²u·ρ,
 // ≈ 4e-11 mm at ρ = 85 mm, or the plain LP settling on an uncertified optimum): plain costs

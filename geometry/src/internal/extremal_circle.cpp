@@ -199,10 +199,16 @@ WarmStart kasa_center(std::span<const Point2> points) {
   // A warm start needs no more than ~256 points: take every stride-th one (a measured
   // profile is ordered along the contour, so a stride keeps the angular coverage).
   const std::size_t stride = std::max<std::size_t>(1, points.size() / 256);
+  // The sample gathered once (each strided point is a cache line of its own; the three
+  // passes below then read it contiguously).
+  thread_local std::vector<Point2> gathered;
+  gathered.clear();
+  for (std::size_t i = 0; i < points.size(); i += stride) gathered.push_back(points[i]);
+  const std::span<const Point2> sample = gathered;
   double count = 0.0, mx = 0.0, my = 0.0;
-  for (std::size_t i = 0; i < points.size(); i += stride) {
-    mx += points[i].x;
-    my += points[i].y;
+  for (const Point2& p : sample) {
+    mx += p.x;
+    my += p.y;
     count += 1.0;
   }
   mx /= count;
@@ -213,10 +219,9 @@ WarmStart kasa_center(std::span<const Point2> points) {
   }
   // Work on (p − mean)·s, s a power of two making the coordinates O(1): no overflow of the
   // third moments whatever the input magnitude.
-  const double sc = sample_scale(points, {mx, my}, stride);
+  const double sc = sample_scale(sample, {mx, my}, 1);
   double suu = 0, suv = 0, svv = 0, suuu = 0, svvv = 0, suvv = 0, svuu = 0;
-  for (std::size_t i = 0; i < points.size(); i += stride) {
-    const Point2& p = points[i];
+  for (const Point2& p : sample) {
     const double u = (p.x - mx) * sc, v = (p.y - my) * sc;
     const double uu = u * u, vv = v * v;
     suu += uu;

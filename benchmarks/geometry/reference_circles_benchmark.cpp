@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "../../geometry/src/internal/isa.h"
 #include "support/test_profiles.h"
 #include "vcmm/geometry/angular_coverage.h"
 #include "vcmm/geometry/certificate.h"
@@ -52,6 +53,15 @@ void BM_LeastSquares(benchmark::State& state) {
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_LeastSquares)->Apply(sizes);
+
+// The same with the widest instruction-set variant its passes may take (0: baseline, 1: AVX2,
+// 2: AVX-512; internal/isa.h — a variant the CPU lacks falls back to the next narrower one).
+void BM_LeastSquaresIsa(benchmark::State& state) {
+  const auto& p = profile(static_cast<std::size_t>(state.range(0)));
+  const g::internal::LimitIsa limit(static_cast<g::internal::Isa>(state.range(1)));
+  for (auto _ : state) benchmark::DoNotOptimize(g::least_squares_circle(p));
+}
+BENCHMARK(BM_LeastSquaresIsa)->ArgsProduct({{3600}, {0, 1, 2}})->Unit(benchmark::kMicrosecond);
 
 void BM_MinimumZone(benchmark::State& state) {
   const auto& p = profile(static_cast<std::size_t>(state.range(0)));

@@ -235,6 +235,9 @@ template <class V>
 #if defined(__SSE2__)
   if constexpr (sizeof(V) == 16) {
     return __builtin_ia32_sqrtpd(v);
+  } else if constexpr (sizeof(V) == 64) {
+    const Lanes<4> lo = lanes_sqrt(internal::low_half(v)), hi = lanes_sqrt(internal::high_half(v));
+    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
   } else {
     const Lanes<2> lo = __builtin_shufflevector(v, v, 0, 1);
     const Lanes<2> hi = __builtin_shufflevector(v, v, 2, 3);
@@ -267,97 +270,124 @@ struct PassLanes {
   V smax{};
 };
 
-/// The pass's work on the W points at i (V = Lanes<W>) or the one (V = double).
+/// The terms W points (V = Lanes<W>) or one (V = double) add to the sums of a pass, and what
+/// they give the extremes.
+template <class V>
+struct PassTerms {
+  V r, s_abs, d, dd, vx, vy, vxd, vyd, vxx, vxy, vyy;
+};
+
+/// The pass's work on the points at i: distances stored, the terms of the sums returned.
+template <bool kFull, int D, class V>
+[[gnu::always_inline]] inline PassTerms<V> pass_terms(const PassInput& in, std::size_t i) {
+  PassTerms<V> t{};
+  const V dx = internal::load<V>(in.x + i) - in.cx, dy = internal::load<V>(in.y + i) - in.cy;
+  const V q = dx * dx + dy * dy;
+  V w;
+  if constexpr (D > 0) {
+    const V s = internal::near_circle_s(q, in.k);
+    t.s_abs = lanes_abs(s);
+    t.r = in.k.r0 + internal::near_circle_offset<D>(s, in.k);
+    w = internal::near_circle_inverse<D>(s, in.k);
+  } else {
+    t.r = lanes_sqrt(q);
+    w = 1.0 / t.r;
+  }
+  internal::store(in.r + i, t.r);
+  t.d = t.r - in.r0;
+  t.vx = dx * w;
+  t.vy = dy * w;
+  if constexpr (kFull) {
+    t.vx = t.vx - in.urx;
+    t.vy = t.vy - in.ury;
+    t.vxx = t.vx * t.vx;
+    t.vxy = t.vx * t.vy;
+    t.vyy = t.vy * t.vy;
+  }
+  t.dd = t.d * t.d;
+  t.vxd = t.vx * t.d;
+  t.vyd = t.vy * t.d;
+  return t;
+}
+
+/// Adds the terms to the sums (same lanes).
+template <bool kFull, class V>
+[[gnu::always_inline]] inline void add_sums(PassLanes<V>& a, const PassTerms<V>& t) {
+  if constexpr (kFull) {
+    a.svxx += t.vxx;
+    a.svxy += t.vxy;
+    a.svyy += t.vyy;
+  }
+  a.sdd += t.dd;
+  a.sd += t.d;
+  a.svx += t.vx;
+  a.svy += t.vy;
+  a.svxd += t.vxd;
+  a.svyd += t.vyd;
+}
+
+/// Takes the terms into the extremes (same lanes).
+template <int D, class V>
+[[gnu::always_inline]] inline void add_extremes(PassLanes<V>& a, const PassTerms<V>& t) {
+  a.rmax = lanes_max(a.rmax, t.r);
+  a.rmin = lanes_min(a.rmin, t.r);
+  if constexpr (D > 0) a.smax = lanes_max(a.smax, t.s_abs);
+}
+
+/// The sums of W points (V = Lanes<W>) or one (V = double) into their accumulators.
 template <bool kFull, int D, class V>
 [[gnu::always_inline]] inline void pass_points(const PassInput& in, std::size_t i,
                                                PassLanes<V>& a) {
-  const V dx = internal::load<V>(in.x + i) - in.cx, dy = internal::load<V>(in.y + i) - in.cy;
-  const V q = dx * dx + dy * dy;
-  V r, w;
-  if constexpr (D > 0) {
-    const V s = internal::near_circle_s(q, in.k);
-    a.smax = lanes_max(a.smax, lanes_abs(s));
-    r = in.k.r0 + internal::near_circle_offset<D>(s, in.k);
-    w = internal::near_circle_inverse<D>(s, in.k);
-  } else {
-    r = lanes_sqrt(q);
-    w = 1.0 / r;
-  }
-  internal::store(in.r + i, r);
-  const V d = r - in.r0;
-  V vx = dx * w, vy = dy * w;
-  a.rmax = lanes_max(a.rmax, r);
-  a.rmin = lanes_min(a.rmin, r);
-  if constexpr (kFull) {
-    vx = vx - in.urx;
-    vy = vy - in.ury;
-    a.svxx += vx * vx;
-    a.svxy += vx * vy;
-    a.svyy += vy * vy;
-  }
-  a.sdd += d * d;
-  a.sd += d;
-  a.svx += vx;
-  a.svy += vy;
-  a.svxd += vx * d;
-  a.svyd += vy * d;
+  const PassTerms<V> t = pass_terms<kFull, D, V>(in, i);
+  add_extremes<D>(a, t);
+  add_sums<kFull>(a, t);
 }
 
-template <int W, bool kFull, int D>
-[[gnu::always_inline]] inline PassSums gn_pass_body(const PassInput& input) {
-  // A local copy: the stores to in.r cannot alias it, so its constants stay in registers.
-  const PassInput in = input;
+/// The four lanes of each sum in point order, added as (l₀ + l₂) + (l₁ + l₃), the extremes
+/// over every lane, then the last points from i on one at a time, added in order.
+template <bool kFull, int D, int W, int kPackets>
+[[gnu::always_inline]] inline PassSums finish_pass(const PassInput& in, std::size_t i,
+                                                   const PassLanes<Lanes<W>> (&a)[kPackets]) {
+  static_assert(W * kPackets == kSumLanes);
   using V = Lanes<W>;
-  constexpr int kPackets = kSumLanes / W;
-  PassLanes<V> a[kPackets];
-  std::size_t i = 0;
-  for (; i + kSumLanes <= in.n; i += kSumLanes)
-    for (int p = 0; p < kPackets; ++p) pass_points<kFull, D>(in, i + p * W, a[p]);
-  // The four lanes in point order, added as (l₀ + l₂) + (l₁ + l₃).
   const auto sum = [&](V PassLanes<V>::*field) {
     double l[kSumLanes];
     for (int p = 0; p < kPackets; ++p)
       for (int j = 0; j < W; ++j) l[p * W + j] = (a[p].*field)[j];
     return (l[0] + l[2]) + (l[1] + l[3]);
   };
-  PassSums out;
-  out.sum_d = sum(&PassLanes<V>::sd);
-  out.sum_dd = sum(&PassLanes<V>::sdd);
-  out.sum_vx = sum(&PassLanes<V>::svx);
-  out.sum_vy = sum(&PassLanes<V>::svy);
-  out.sum_vxd = sum(&PassLanes<V>::svxd);
-  out.sum_vyd = sum(&PassLanes<V>::svyd);
+  PassLanes<double> t;
+  t.sd = sum(&PassLanes<V>::sd);
+  t.sdd = sum(&PassLanes<V>::sdd);
+  t.svx = sum(&PassLanes<V>::svx);
+  t.svy = sum(&PassLanes<V>::svy);
+  t.svxd = sum(&PassLanes<V>::svxd);
+  t.svyd = sum(&PassLanes<V>::svyd);
   if constexpr (kFull) {
-    out.sum_vxx = sum(&PassLanes<V>::svxx);
-    out.sum_vxy = sum(&PassLanes<V>::svxy);
-    out.sum_vyy = sum(&PassLanes<V>::svyy);
+    t.svxx = sum(&PassLanes<V>::svxx);
+    t.svxy = sum(&PassLanes<V>::svxy);
+    t.svyy = sum(&PassLanes<V>::svyy);
   }
-  out.r_max = -std::numeric_limits<double>::infinity();
-  out.r_min = std::numeric_limits<double>::infinity();
   for (int p = 0; p < kPackets; ++p)
     for (int j = 0; j < W; ++j) {
-      out.r_max = std::max(out.r_max, a[p].rmax[j]);
-      out.r_min = std::min(out.r_min, a[p].rmin[j]);
-      out.s_max = std::max(out.s_max, a[p].smax[j]);
+      t.rmax = std::max(t.rmax, a[p].rmax[j]);
+      t.rmin = std::min(t.rmin, a[p].rmin[j]);
+      t.smax = std::max(t.smax, a[p].smax[j]);
     }
-  // The last n mod 4 points, one at a time, added in order.
-  for (; i < in.n; ++i) {
-    PassLanes<double> t;
-    pass_points<kFull, D>(in, i, t);
-    out.sum_d += t.sd;
-    out.sum_dd += t.sdd;
-    out.sum_vx += t.svx;
-    out.sum_vy += t.svy;
-    out.sum_vxd += t.svxd;
-    out.sum_vyd += t.svyd;
-    out.sum_vxx += t.svxx;
-    out.sum_vxy += t.svxy;
-    out.sum_vyy += t.svyy;
-    out.r_max = std::max(out.r_max, t.rmax);
-    out.r_min = std::min(out.r_min, t.rmin);
-    out.s_max = std::max(out.s_max, t.smax);
-  }
-  return out;
+  for (; i < in.n; ++i) pass_points<kFull, D>(in, i, t);
+  return {t.sd, t.sdd, t.svx, t.svy, t.svxd, t.svyd, t.svxx, t.svxy, t.svyy, t.rmax, t.rmin, t.smax};
+}
+
+template <int W, bool kFull, int D>
+[[gnu::always_inline]] inline PassSums gn_pass_body(const PassInput& input) {
+  // A local copy: the stores to in.r cannot alias it, so its constants stay in registers.
+  const PassInput in = input;
+  constexpr int kPackets = kSumLanes / W;
+  PassLanes<Lanes<W>> a[kPackets];
+  std::size_t i = 0;
+  for (; i + kSumLanes <= in.n; i += kSumLanes)
+    for (int p = 0; p < kPackets; ++p) pass_points<kFull, D>(in, i + p * W, a[p]);
+  return finish_pass<kFull, D, W, kPackets>(in, i, a);
 }
 
 template <bool kFull, int D>
@@ -369,11 +399,70 @@ template <bool kFull, int D>
 __attribute__((target("avx2"))) PassSums gn_pass_avx2(const PassInput& in) {
   return gn_pass_body<4, kFull, D>(in);
 }
+
+/// The AVX-512 variant: the terms of 8 points in one vector, added to the four-lane sums as
+/// its low half, then its high half — the points i..i+3, then i+4..i+7, into lanes 0..3: the
+/// additions of the AVX2 variant in its order, so the same bits. Two sums share an 8-lane
+/// accumulator (lanes 0..3 the one, 4..7 the other): one shuffle and one addition per half for
+/// both. Then 4 points more if n mod 8 ≥ 4, and the tail as there. (The extremes are
+/// order-free: 8 lanes.)
+template <bool kFull, int D>
+__attribute__((target("avx512f"))) PassSums gn_pass_avx512(const PassInput& input) {
+  const PassInput in = input;
+  using V8 = Lanes<8>;
+  using V4 = Lanes<4>;
+  // [a low half | b low half], [a high half | b high half].
+  const auto lows = [](const V8& a, const V8& b) {
+    return __builtin_shufflevector(a, b, 0, 1, 2, 3, 8, 9, 10, 11);
+  };
+  const auto highs = [](const V8& a, const V8& b) {
+    return __builtin_shufflevector(a, b, 4, 5, 6, 7, 12, 13, 14, 15);
+  };
+  V8 d_dd{}, vx_vy{}, vxd_vyd{}, vxx_vyy{};
+  V4 vxy{};
+  PassLanes<V8> e;  // the extremes only
+  std::size_t i = 0;
+  for (; i + 8 <= in.n; i += 8) {
+    const PassTerms<V8> t = pass_terms<kFull, D, V8>(in, i);
+    add_extremes<D>(e, t);
+    if constexpr (kFull) {
+      vxx_vyy += lows(t.vxx, t.vyy);
+      vxx_vyy += highs(t.vxx, t.vyy);
+      vxy += internal::low_half(t.vxy);
+      vxy += internal::high_half(t.vxy);
+    }
+    d_dd += lows(t.d, t.dd);
+    d_dd += highs(t.d, t.dd);
+    vx_vy += lows(t.vx, t.vy);
+    vx_vy += highs(t.vx, t.vy);
+    vxd_vyd += lows(t.vxd, t.vyd);
+    vxd_vyd += highs(t.vxd, t.vyd);
+  }
+  PassLanes<V4> a[1];
+  a[0].sd = internal::low_half(d_dd);
+  a[0].sdd = internal::high_half(d_dd);
+  a[0].svx = internal::low_half(vx_vy);
+  a[0].svy = internal::high_half(vx_vy);
+  a[0].svxd = internal::low_half(vxd_vyd);
+  a[0].svyd = internal::high_half(vxd_vyd);
+  a[0].svxx = internal::low_half(vxx_vyy);
+  a[0].svyy = internal::high_half(vxx_vyy);
+  a[0].svxy = vxy;
+  a[0].rmax = lanes_max(internal::low_half(e.rmax), internal::high_half(e.rmax));
+  a[0].rmin = lanes_min(internal::low_half(e.rmin), internal::high_half(e.rmin));
+  a[0].smax = lanes_max(internal::low_half(e.smax), internal::high_half(e.smax));
+  if (i + 4 <= in.n) {
+    pass_points<kFull, D>(in, i, a[0]);
+    i += 4;
+  }
+  return finish_pass<kFull, D, 4, 1>(in, i, a);
+}
 #endif
 
 template <bool kFull, int D>
 PassSums gn_pass_variant(const PassInput& in) {
 #if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return gn_pass_avx512<kFull, D>(in);
   if (internal::use_avx2()) return gn_pass_avx2<kFull, D>(in);
 #endif
   return gn_pass_baseline<kFull, D>(in);

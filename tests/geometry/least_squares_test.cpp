@@ -305,6 +305,7 @@ INSTANTIATE_TEST_SUITE_P(
         Regime{"SeriesEdge", 10.0, {-40, 70}, 1001, 0, 2e-3, 1e-4},
         Regime{"BeyondSeries", 10.0, {-40, 70}, 1001, 0, 6e-3, 1e-4},
         Regime{"Ring3601", 85.5, {0, 0}, 3601, 0, 1e-4, 5e-5},
+        Regime{"Ring1007", 85.5, {1, 2}, 1007, 0, 1e-4, 5e-5},  // n mod 8 = 7
         Regime{"Half", 30.0, {100, 100}, 500, kPi, 1e-3, 1e-4},
         Regime{"Quarter", 30.0, {-900, 0}, 400, kPi / 2, 1e-3, 1e-4},
         Regime{"Arc30deg", 50.0, {0, 0}, 300, kPi / 6, 1e-4, 1e-5},
@@ -314,23 +315,28 @@ INSTANTIATE_TEST_SUITE_P(
         Regime{"Sparse4Arc", 12.0, {0, 0}, 4, kPi / 2, 1e-3, 0}),
     regime_name);
 
-// The Gauss-Newton passes run as AVX2 or as baseline (SSE2) code (internal/isa.h), with their
-// sums in the same four lanes: the same bits either way.
+// The Gauss-Newton passes run as AVX-512, AVX2 or baseline (SSE2) code (internal/isa.h), with
+// their sums in the same four lanes: the same bits whichever runs (each variant the CPU lacks
+// falls back to the next narrower one).
 TEST_P(LeastSquaresRegimes, InstructionSetVariantsGiveTheSameBits) {
+  using vcmm::geometry::internal::Isa;
   const Regime g = GetParam();
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const auto pts = regime_profile(g, seed);
     const LeastSquaresCircle fit = least_squares_circle(pts);
-    LeastSquaresCircle base;
-    {
-      vcmm::geometry::internal::ForceBaselineIsa baseline;
-      base = least_squares_circle(pts);
+    for (const Isa isa : {Isa::avx2, Isa::baseline}) {
+      LeastSquaresCircle other;
+      {
+        const vcmm::geometry::internal::LimitIsa limit(isa);
+        other = least_squares_circle(pts);
+      }
+      const int v = static_cast<int>(isa);
+      EXPECT_EQ(std::memcmp(&fit.center, &other.center, sizeof fit.center), 0) << seed << v;
+      EXPECT_EQ(std::memcmp(&fit.radius, &other.radius, sizeof fit.radius), 0) << seed << v;
+      EXPECT_EQ(std::memcmp(&fit.ron, &other.ron, sizeof fit.ron), 0) << seed << v;
+      EXPECT_EQ(fit.contacts, other.contacts) << seed << v;
+      EXPECT_EQ(fit.iterations, other.iterations) << seed << v;
     }
-    EXPECT_EQ(std::memcmp(&fit.center, &base.center, sizeof fit.center), 0) << seed;
-    EXPECT_EQ(std::memcmp(&fit.radius, &base.radius, sizeof fit.radius), 0) << seed;
-    EXPECT_EQ(std::memcmp(&fit.ron, &base.ron, sizeof fit.ron), 0) << seed;
-    EXPECT_EQ(fit.contacts, base.contacts) << seed;
-    EXPECT_EQ(fit.iterations, base.iterations) << seed;
   }
 }
 

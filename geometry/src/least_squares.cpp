@@ -479,6 +479,113 @@ PassSums gn_pass(const PassInput& in, int degree) {
   }
 }
 
+// ---- the load pass ---------------------------------------------------------------------------
+// One pass over the input points (x, y pairs): the local coordinates p_i − p₀ into the
+// workspace, the extent of the raw coordinates and the moments of the Kåsa start, each moment
+// a two-lane sum (lane 0 the even points, lane 1 the odd ones, each in point order; the lanes
+// are added at the end) — the order of the original SSE2 pass, kept by every variant below, so
+// the start circle has the same bits whichever runs.
+
+/// The two-lane moments and, per coordinate (lane 0 x, lane 1 y), the extremes.
+struct LoadSums {
+  Lanes<2> sx{}, sy{}, sxx{}, syy{}, sxy{}, sxz{}, syz{};
+  Lanes<2> lo, hi;
+};
+
+/// Points i and i + 1 (p: the points as x, y pairs).
+[[gnu::always_inline]] inline void load_pair(const double* p, std::size_t i, Point2 shift,
+                                             double* xs, double* ys, LoadSums& m) {
+  const Lanes<2> a = internal::load<Lanes<2>>(p + 2 * i);
+  const Lanes<2> b = internal::load<Lanes<2>>(p + 2 * i + 2);
+  m.lo = lanes_min(m.lo, lanes_min(a, b));
+  m.hi = lanes_max(m.hi, lanes_max(a, b));
+  const Lanes<2> x = __builtin_shufflevector(a, b, 0, 2) - shift.x;
+  const Lanes<2> y = __builtin_shufflevector(a, b, 1, 3) - shift.y;
+  internal::store(xs + i, x);
+  internal::store(ys + i, y);
+  const Lanes<2> xx = x * x, yy = y * y;
+  const Lanes<2> z = xx + yy;
+  m.sx += x;
+  m.sy += y;
+  m.sxx += xx;
+  m.syy += yy;
+  m.sxy += x * y;
+  m.sxz += x * z;
+  m.syz += y * z;
+}
+
+#if VCMM_GEOMETRY_X86
+/// The load pass on blocks of 8 points from 0 while they fit below `packed`; returns the
+/// first point not taken. Element-wise the operations of load_pair; the four 2-lane packets
+/// (points 2k, 2k + 1) of each moment are added to it in order k = 0..3, four moments (then
+/// three) side by side in one 8-lane accumulator: the additions of load_pair, in its order.
+__attribute__((target("avx512f"))) std::size_t load_blocks_avx512(const double* p,
+                                                                  std::size_t packed,
+                                                                  Point2 shift, double* xs,
+                                                                  double* ys, LoadSums& m) {
+  using V8 = Lanes<8>;
+  const auto join = [](const Lanes<2>& a, const Lanes<2>& b, const Lanes<2>& c,
+                       const Lanes<2>& d) {
+    const Lanes<4> ab = __builtin_shufflevector(a, b, 0, 1, 2, 3);
+    const Lanes<4> cd = __builtin_shufflevector(c, d, 0, 1, 2, 3);
+    return V8(__builtin_shufflevector(ab, cd, 0, 1, 2, 3, 4, 5, 6, 7));
+  };
+  V8 acc_a = join(m.sx, m.sy, m.sxx, m.syy);          // [sx | sy | sxx | syy]
+  V8 acc_b = join(m.sxy, m.sxz, m.syz, Lanes<2>{});   // [sxy | sxz | syz | 0]
+  V8 lo = join(m.lo, m.lo, m.lo, m.lo), hi = join(m.hi, m.hi, m.hi, m.hi);
+  std::size_t i = 0;
+  for (; i + 8 <= packed; i += 8) {
+    const V8 a = internal::load<V8>(p + 2 * i), b = internal::load<V8>(p + 2 * i + 8);
+    lo = lanes_min(lo, lanes_min(a, b));
+    hi = lanes_max(hi, lanes_max(a, b));
+    const V8 x = __builtin_shufflevector(a, b, 0, 2, 4, 6, 8, 10, 12, 14) - shift.x;
+    const V8 y = __builtin_shufflevector(a, b, 1, 3, 5, 7, 9, 11, 13, 15) - shift.y;
+    internal::store(xs + i, x);
+    internal::store(ys + i, y);
+    const V8 xx = x * x, yy = y * y;
+    const V8 z = xx + yy;
+    const V8 xy = x * y, xz = x * z, yz = y * z;
+    // Packet k of the four moments side by side: [x_k | y_k | xx_k | yy_k] (a 4 × 4
+    // transpose of 2-lane packets), and [xy_k | xz_k | yz_k | 0].
+    const V8 x_y_lo = __builtin_shufflevector(x, y, 0, 1, 8, 9, 2, 3, 10, 11);
+    const V8 x_y_hi = __builtin_shufflevector(x, y, 4, 5, 12, 13, 6, 7, 14, 15);
+    const V8 xx_yy_lo = __builtin_shufflevector(xx, yy, 0, 1, 8, 9, 2, 3, 10, 11);
+    const V8 xx_yy_hi = __builtin_shufflevector(xx, yy, 4, 5, 12, 13, 6, 7, 14, 15);
+    const V8 zero{};
+    const V8 xy_xz_lo = __builtin_shufflevector(xy, xz, 0, 1, 8, 9, 2, 3, 10, 11);
+    const V8 xy_xz_hi = __builtin_shufflevector(xy, xz, 4, 5, 12, 13, 6, 7, 14, 15);
+    const V8 yz_0_lo = __builtin_shufflevector(yz, zero, 0, 1, 8, 9, 2, 3, 10, 11);
+    const V8 yz_0_hi = __builtin_shufflevector(yz, zero, 4, 5, 12, 13, 6, 7, 14, 15);
+    acc_a += __builtin_shufflevector(x_y_lo, xx_yy_lo, 0, 1, 2, 3, 8, 9, 10, 11);
+    acc_b += __builtin_shufflevector(xy_xz_lo, yz_0_lo, 0, 1, 2, 3, 8, 9, 10, 11);
+    acc_a += __builtin_shufflevector(x_y_lo, xx_yy_lo, 4, 5, 6, 7, 12, 13, 14, 15);
+    acc_b += __builtin_shufflevector(xy_xz_lo, yz_0_lo, 4, 5, 6, 7, 12, 13, 14, 15);
+    acc_a += __builtin_shufflevector(x_y_hi, xx_yy_hi, 0, 1, 2, 3, 8, 9, 10, 11);
+    acc_b += __builtin_shufflevector(xy_xz_hi, yz_0_hi, 0, 1, 2, 3, 8, 9, 10, 11);
+    acc_a += __builtin_shufflevector(x_y_hi, xx_yy_hi, 4, 5, 6, 7, 12, 13, 14, 15);
+    acc_b += __builtin_shufflevector(xy_xz_hi, yz_0_hi, 4, 5, 6, 7, 12, 13, 14, 15);
+  }
+  const auto part = [](const V8& v, int k) {
+    return k == 0   ? Lanes<2>(__builtin_shufflevector(v, v, 0, 1))
+           : k == 1 ? Lanes<2>(__builtin_shufflevector(v, v, 2, 3))
+           : k == 2 ? Lanes<2>(__builtin_shufflevector(v, v, 4, 5))
+                    : Lanes<2>(__builtin_shufflevector(v, v, 6, 7));
+  };
+  m.sx = part(acc_a, 0);
+  m.sy = part(acc_a, 1);
+  m.sxx = part(acc_a, 2);
+  m.syy = part(acc_a, 3);
+  m.sxy = part(acc_b, 0);
+  m.sxz = part(acc_b, 1);
+  m.syz = part(acc_b, 2);
+  for (int k = 0; k < 4; ++k) {
+    m.lo = lanes_min(m.lo, part(lo, k));
+    m.hi = lanes_max(m.hi, part(hi, k));
+  }
+  return i;
+}
+#endif
+
 /// Per-thread scratch arrays, kept between calls: reallocating ~1 MB per call at n = 36 000
 /// cost ~100 page faults and a quarter of the run time.
 struct Workspace {
@@ -502,12 +609,42 @@ class Fitter {
 
   /// One pass over the input: the local coordinates p_i − p₀ into the workspace, the span
   /// check (check_span, on the raw coordinates) and the moments of the Kåsa start below.
-  /// With SSE2 two points are loaded as two packets and unpacked into an x and a y packet;
-  /// every sum is accumulated exactly as from the stored arrays (same packets, same order).
+  /// With SSE2 two points are loaded as two packets and unpacked into an x and a y packet
+  /// (load_pair; blocks of 8 with AVX-512, load_blocks_avx512); every sum is accumulated
+  /// exactly as from the stored arrays (same packets, same order).
   void load_and_kasa_start(std::span<const Point2> points, double& cx, double& cy,
                            double& radius) {
     Packet sx = simd::pset1<Packet>(0.0), sy = sx, sxx = sx, syy = sx, sxy = sx, sxz = sx,
            syz = sx;
+#if defined(__SSE2__) && !defined(__AVX__)
+    static_assert(kLanes == 2 && sizeof(Point2) == 2 * sizeof(double));
+    const double* p = reinterpret_cast<const double*>(points.data());
+    LoadSums m;
+    m.lo = m.hi = internal::load<Lanes<2>>(p);  // per coordinate: lane 0 x, lane 1 y
+    std::size_t i = 0;
+    const auto packed = static_cast<std::size_t>(packed_);
+#if VCMM_GEOMETRY_X86
+    if (internal::use_avx512()) i = load_blocks_avx512(p, packed, shift_, x_, y_, m);
+#endif
+    for (; i < packed; i += 2) load_pair(p, i, shift_, x_, y_, m);
+    sx = m.sx;
+    sy = m.sy;
+    sxx = m.sxx;
+    syy = m.syy;
+    sxy = m.sxy;
+    sxz = m.sxz;
+    syz = m.syz;
+    Extent extent{std::min(m.lo[0], points[0].x), std::max(m.hi[0], points[0].x),
+                  std::min(m.lo[1], points[0].y), std::max(m.hi[1], points[0].y)};
+    for (Eigen::Index j = packed_; j < n_; ++j) {
+      const Point2 q = points[static_cast<std::size_t>(j)];
+      extent = {std::min(extent.x0, q.x), std::max(extent.x1, q.x), std::min(extent.y0, q.y),
+                std::max(extent.y1, q.y)};
+      x_[j] = q.x - shift_.x;
+      y_[j] = q.y - shift_.y;
+    }
+    check_span(extent);
+#else
     const auto accumulate = [&](Packet x, Packet y) {
       const Packet xx = simd::pmul(x, x), yy = simd::pmul(y, y);
       const Packet z = simd::padd(xx, yy);
@@ -519,38 +656,6 @@ class Fitter {
       sxz = simd::pmadd(x, z, sxz);
       syz = simd::pmadd(y, z, syz);
     };
-#if defined(__SSE2__) && !defined(__AVX__)
-    static_assert(kLanes == 2 && sizeof(Point2) == 2 * sizeof(double));
-    Extent extent{points[0].x, points[0].x, points[0].y, points[0].y};
-    {
-      const double* p = reinterpret_cast<const double*>(points.data());
-      const __m128d shift_x = _mm_set1_pd(shift_.x), shift_y = _mm_set1_pd(shift_.y);
-      __m128d lo = _mm_loadu_pd(p), hi = lo;  // per coordinate: lane 0 x, lane 1 y
-      for (Eigen::Index i = 0; i < packed_; i += 2) {
-        const __m128d a = _mm_loadu_pd(p + 2 * i), b = _mm_loadu_pd(p + 2 * i + 2);
-        lo = _mm_min_pd(lo, _mm_min_pd(a, b));
-        hi = _mm_max_pd(hi, _mm_max_pd(a, b));
-        const __m128d x = _mm_sub_pd(_mm_unpacklo_pd(a, b), shift_x);
-        const __m128d y = _mm_sub_pd(_mm_unpackhi_pd(a, b), shift_y);
-        _mm_storeu_pd(x_ + i, x);
-        _mm_storeu_pd(y_ + i, y);
-        accumulate(x, y);
-      }
-      alignas(16) double l[2], h[2];
-      _mm_store_pd(l, lo);
-      _mm_store_pd(h, hi);
-      extent = {std::min(extent.x0, l[0]), std::max(extent.x1, h[0]),
-                std::min(extent.y0, l[1]), std::max(extent.y1, h[1])};
-    }
-    for (Eigen::Index i = packed_; i < n_; ++i) {
-      const Point2 q = points[static_cast<std::size_t>(i)];
-      extent = {std::min(extent.x0, q.x), std::max(extent.x1, q.x), std::min(extent.y0, q.y),
-                std::max(extent.y1, q.y)};
-      x_[i] = q.x - shift_.x;
-      y_[i] = q.y - shift_.y;
-    }
-    check_span(extent);
-#else
     check_span(extent_of(points));
     for (std::size_t i = 0; i < points.size(); ++i) {
       x_[i] = points[i].x - shift_.x;

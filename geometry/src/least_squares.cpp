@@ -612,8 +612,11 @@ class Fitter {
   /// With SSE2 two points are loaded as two packets and unpacked into an x and a y packet
   /// (load_pair; blocks of 8 with AVX-512, load_blocks_avx512); every sum is accumulated
   /// exactly as from the stored arrays (same packets, same order).
-  void load_and_kasa_start(std::span<const Point2> points, double& cx, double& cy,
-                           double& radius) {
+  /// check_points: the checks of validate_profile(points, 3, …) beyond the count (which the
+  /// caller has made), in the same order with the same messages, the finiteness of every
+  /// coordinate decided from the moments of this pass (check_points_of below).
+  void load_and_kasa_start(std::span<const Point2> points, bool check_points, double& cx,
+                           double& cy, double& radius) {
     Packet sx = simd::pset1<Packet>(0.0), sy = sx, sxx = sx, syy = sx, sxy = sx, sxz = sx,
            syz = sx;
 #if defined(__SSE2__) && !defined(__AVX__)
@@ -636,15 +639,28 @@ class Fitter {
     syz = m.syz;
     Extent extent{std::min(m.lo[0], points[0].x), std::max(m.hi[0], points[0].x),
                   std::min(m.lo[1], points[0].y), std::max(m.hi[1], points[0].y)};
+    bool finite = true;
     for (Eigen::Index j = packed_; j < n_; ++j) {
       const Point2 q = points[static_cast<std::size_t>(j)];
       extent = {std::min(extent.x0, q.x), std::max(extent.x1, q.x), std::min(extent.y0, q.y),
                 std::max(extent.y1, q.y)};
       x_[j] = q.x - shift_.x;
       y_[j] = q.y - shift_.y;
+      finite = finite && std::isfinite(q.x) && std::isfinite(q.y);
+    }
+    if (check_points) {
+      // A coordinate that is not finite makes x² or y² of its point (p − p₀; for p₀ itself
+      // ∞ − ∞) +∞ or NaN, and a lane sum that takes one stays so: finite lane sums of x² and
+      // y² prove every packed coordinate finite. (Sums that overflow on finite data only
+      // send the search to validate_profile, which finds nothing; check_span then refuses.)
+      const Lanes<2> squares = m.sxx + m.syy;
+      if (!(finite && std::isfinite(squares[0]) && std::isfinite(squares[1])))
+        validate_profile(points, 3, kCaller);
+      internal::validate_profile_shape(points, 3, kCaller, /*require_non_collinear=*/true);
     }
     check_span(extent);
 #else
+    if (check_points) validate_profile(points, 3, kCaller);
     const auto accumulate = [&](Packet x, Packet y) {
       const Packet xx = simd::pmul(x, x), yy = simd::pmul(y, y);
       const Packet z = simd::padd(xx, yy);
@@ -749,19 +765,31 @@ class Fitter {
 
 }  // namespace
 
+namespace {
+
+LeastSquaresCircle fit_circle(std::span<const Point2> points, bool check_points);
+
+}  // namespace
+
 LeastSquaresCircle least_squares_circle(std::span<const Point2> points) {
-  validate_profile(points, 3, kCaller);
-  return internal::fit_least_squares_circle(points);
+  // validate_profile(points, 3, kCaller): the count here, the rest in the fit's first pass.
+  if (points.size() < 3) validate_profile(points, 3, kCaller);
+  return fit_circle(points, /*check_points=*/true);
 }
 
-
 LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> points) {
+  return fit_circle(points, /*check_points=*/false);
+}
+
+namespace {
+
+LeastSquaresCircle fit_circle(std::span<const Point2> points, bool check_points) {
   thread_local Workspace workspace;
   Fitter fit(points, workspace);
   const double nd = static_cast<double>(fit.size());
 
   double cx = 0.0, cy = 0.0, r0 = 0.0;
-  fit.load_and_kasa_start(points, cx, cy, r0);
+  fit.load_and_kasa_start(points, check_points, cx, cy, r0);
   // Shift for the directions in M: ≈ ū ≈ (centroid − c) / R — zero for a full circle,
   // towards the arc's middle for an arc.
   const Point2 g = fit.centroid();
@@ -896,6 +924,8 @@ LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> po
   out.ron.ronq = std::sqrt(std::max(0.0, s.sum_dd - nd * mean_d * mean_d) / nd);
   return out;
 }
+
+}  // namespace
 
 std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
     Point2 center, double radius, const double* w, const double* ray_x, const double* ray_y,

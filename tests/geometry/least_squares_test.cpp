@@ -420,6 +420,41 @@ TEST(LeastSquaresCircleBadInput, NonFiniteCoordinate) {
   expect_invalid({{0, 0}, {1, std::numeric_limits<double>::infinity()}, {0, 1}}, "point 1");
 }
 
+// The finiteness check runs inside the fit's first pass (from its moments): every position
+// (the AVX-512 blocks, the 2-point packets, the odd last point, the first point the others are
+// shifted by), NaN and ±∞, in x or in y, on every instruction-set variant — the same message as
+// validate_profile's, naming the point.
+TEST(LeastSquaresCircleBadInput, NonFiniteCoordinateAnywhereIsNamed) {
+  using vcmm::geometry::internal::Isa;
+  const double bad[] = {std::nan(""), std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
+  for (const std::size_t n : {std::size_t{3}, std::size_t{64}, std::size_t{101}}) {
+    const auto ring = circle_points({812.3, -555.1}, 85.5, n);
+    for (const Isa isa : {Isa::avx512, Isa::avx2, Isa::baseline}) {
+      const vcmm::geometry::internal::LimitIsa limit(isa);
+      for (std::size_t i = 0; i < n; ++i)
+        for (const double v : bad)
+          for (int coordinate = 0; coordinate < 2; ++coordinate) {
+            auto pts = ring;
+            (coordinate == 0 ? pts[i].x : pts[i].y) = v;
+            std::string expected;
+            try {
+              validate_profile(pts, 3, "least_squares_circle");
+            } catch (const InvalidInput& e) {
+              expected = e.what();
+            }
+            ASSERT_NE(expected.find("point " + std::to_string(i) + " "), std::string::npos);
+            try {
+              least_squares_circle(pts);
+              ADD_FAILURE() << "fitted with a non-finite point " << i;
+            } catch (const InvalidInput& e) {
+              EXPECT_EQ(std::string(e.what()), expected) << n << " " << i;
+            }
+          }
+    }
+  }
+}
+
 TEST(LeastSquaresCircleBadInput, CollinearOrIdentical) {
   expect_invalid({{0, 0}, {1, 1}, {2, 2}, {-5, -5}}, "collinear");
   expect_invalid({{0, 0}, {1, 1}, {0, 0}, {1, 1}}, "collinear");  // two distinct points

@@ -479,6 +479,63 @@ PassSums gn_pass(const PassInput& in, int degree) {
   }
 }
 
+// ---- two-lane sums in AVX-512 registers ------------------------------------------------------
+// Sums kept in two lanes (lane 0 the even points, lane 1 the odd ones, each in point order) are
+// latency-bound: one addition per two points and sum. The AVX-512 variants below keep four
+// such sums side by side in an 8-lane accumulator, [s₀ | s₁ | s₂ | s₃], and add the four
+// 2-point packets of a block of 8 points in order: the additions of the 2-lane code in its
+// order (the same bits), a quarter of the additions.
+
+/// [a | b | c | d] from four 2-lane sums.
+[[gnu::always_inline]] inline Lanes<8> join_packets(const Lanes<2>& a, const Lanes<2>& b,
+                                                    const Lanes<2>& c, const Lanes<2>& d) {
+  const Lanes<4> ab = __builtin_shufflevector(a, b, 0, 1, 2, 3);
+  const Lanes<4> cd = __builtin_shufflevector(c, d, 0, 1, 2, 3);
+  return __builtin_shufflevector(ab, cd, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+
+/// The 2-lane packet k (lanes 2k, 2k + 1) of v.
+[[gnu::always_inline]] inline Lanes<2> part(const Lanes<8>& v, int k) {
+  return k == 0   ? Lanes<2>(__builtin_shufflevector(v, v, 0, 1))
+         : k == 1 ? Lanes<2>(__builtin_shufflevector(v, v, 2, 3))
+         : k == 2 ? Lanes<2>(__builtin_shufflevector(v, v, 4, 5))
+                  : Lanes<2>(__builtin_shufflevector(v, v, 6, 7));
+}
+
+/// The eight 2-lane sums [a | b | c | d] and [e | f | g | h] back into *sums[k] (k = 0..7;
+/// a null pointer drops its sum).
+[[gnu::always_inline]] inline void split_packets(const Lanes<8>& acc_a, const Lanes<8>& acc_b,
+                                                 Lanes<2>* const (&sums)[8]) {
+  for (int k = 0; k < 8; ++k)
+    if (sums[k]) *sums[k] = part(k < 4 ? acc_a : acc_b, k % 4);
+}
+
+/// acc_a += packets k = 0..3 of [a | b | c | d], acc_b of [e | f | g | h], in order k: the
+/// per-point terms of 8 sums over 8 points (a 4 × 4 transpose of 2-lane packets each).
+[[gnu::always_inline]] inline void add_packets(Lanes<8>& acc_a, Lanes<8>& acc_b,
+                                               const Lanes<8>& a, const Lanes<8>& b,
+                                               const Lanes<8>& c, const Lanes<8>& d,
+                                               const Lanes<8>& e, const Lanes<8>& f,
+                                               const Lanes<8>& g, const Lanes<8>& h) {
+  // [a₀ b₀ a₁ b₁] and [a₂ b₂ a₃ b₃] (2-lane packets), the same for c, d and so on.
+  const Lanes<8> ab_lo = __builtin_shufflevector(a, b, 0, 1, 8, 9, 2, 3, 10, 11);
+  const Lanes<8> ab_hi = __builtin_shufflevector(a, b, 4, 5, 12, 13, 6, 7, 14, 15);
+  const Lanes<8> cd_lo = __builtin_shufflevector(c, d, 0, 1, 8, 9, 2, 3, 10, 11);
+  const Lanes<8> cd_hi = __builtin_shufflevector(c, d, 4, 5, 12, 13, 6, 7, 14, 15);
+  const Lanes<8> ef_lo = __builtin_shufflevector(e, f, 0, 1, 8, 9, 2, 3, 10, 11);
+  const Lanes<8> ef_hi = __builtin_shufflevector(e, f, 4, 5, 12, 13, 6, 7, 14, 15);
+  const Lanes<8> gh_lo = __builtin_shufflevector(g, h, 0, 1, 8, 9, 2, 3, 10, 11);
+  const Lanes<8> gh_hi = __builtin_shufflevector(g, h, 4, 5, 12, 13, 6, 7, 14, 15);
+  acc_a += __builtin_shufflevector(ab_lo, cd_lo, 0, 1, 2, 3, 8, 9, 10, 11);
+  acc_b += __builtin_shufflevector(ef_lo, gh_lo, 0, 1, 2, 3, 8, 9, 10, 11);
+  acc_a += __builtin_shufflevector(ab_lo, cd_lo, 4, 5, 6, 7, 12, 13, 14, 15);
+  acc_b += __builtin_shufflevector(ef_lo, gh_lo, 4, 5, 6, 7, 12, 13, 14, 15);
+  acc_a += __builtin_shufflevector(ab_hi, cd_hi, 0, 1, 2, 3, 8, 9, 10, 11);
+  acc_b += __builtin_shufflevector(ef_hi, gh_hi, 0, 1, 2, 3, 8, 9, 10, 11);
+  acc_a += __builtin_shufflevector(ab_hi, cd_hi, 4, 5, 6, 7, 12, 13, 14, 15);
+  acc_b += __builtin_shufflevector(ef_hi, gh_hi, 4, 5, 6, 7, 12, 13, 14, 15);
+}
+
 // ---- the load pass ---------------------------------------------------------------------------
 // One pass over the input points (x, y pairs): the local coordinates p_i − p₀ into the
 // workspace, the extent of the raw coordinates and the moments of the Kåsa start, each moment
@@ -516,23 +573,16 @@ struct LoadSums {
 
 #if VCMM_GEOMETRY_X86
 /// The load pass on blocks of 8 points from 0 while they fit below `packed`; returns the
-/// first point not taken. Element-wise the operations of load_pair; the four 2-lane packets
-/// (points 2k, 2k + 1) of each moment are added to it in order k = 0..3, four moments (then
-/// three) side by side in one 8-lane accumulator: the additions of load_pair, in its order.
+/// first point not taken. Element-wise the operations of load_pair, the moments added as
+/// there (add_packets).
 __attribute__((target("avx512f"))) std::size_t load_blocks_avx512(const double* p,
                                                                   std::size_t packed,
                                                                   Point2 shift, double* xs,
                                                                   double* ys, LoadSums& m) {
   using V8 = Lanes<8>;
-  const auto join = [](const Lanes<2>& a, const Lanes<2>& b, const Lanes<2>& c,
-                       const Lanes<2>& d) {
-    const Lanes<4> ab = __builtin_shufflevector(a, b, 0, 1, 2, 3);
-    const Lanes<4> cd = __builtin_shufflevector(c, d, 0, 1, 2, 3);
-    return V8(__builtin_shufflevector(ab, cd, 0, 1, 2, 3, 4, 5, 6, 7));
-  };
-  V8 acc_a = join(m.sx, m.sy, m.sxx, m.syy);          // [sx | sy | sxx | syy]
-  V8 acc_b = join(m.sxy, m.sxz, m.syz, Lanes<2>{});   // [sxy | sxz | syz | 0]
-  V8 lo = join(m.lo, m.lo, m.lo, m.lo), hi = join(m.hi, m.hi, m.hi, m.hi);
+  V8 acc_a = join_packets(m.sx, m.sy, m.sxx, m.syy);         // [sx | sy | sxx | syy]
+  V8 acc_b = join_packets(m.sxy, m.sxz, m.syz, Lanes<2>{});  // [sxy | sxz | syz | 0]
+  V8 lo = join_packets(m.lo, m.lo, m.lo, m.lo), hi = join_packets(m.hi, m.hi, m.hi, m.hi);
   std::size_t i = 0;
   for (; i + 8 <= packed; i += 8) {
     const V8 a = internal::load<V8>(p + 2 * i), b = internal::load<V8>(p + 2 * i + 8);
@@ -545,43 +595,134 @@ __attribute__((target("avx512f"))) std::size_t load_blocks_avx512(const double* 
     const V8 xx = x * x, yy = y * y;
     const V8 z = xx + yy;
     const V8 xy = x * y, xz = x * z, yz = y * z;
-    // Packet k of the four moments side by side: [x_k | y_k | xx_k | yy_k] (a 4 × 4
-    // transpose of 2-lane packets), and [xy_k | xz_k | yz_k | 0].
-    const V8 x_y_lo = __builtin_shufflevector(x, y, 0, 1, 8, 9, 2, 3, 10, 11);
-    const V8 x_y_hi = __builtin_shufflevector(x, y, 4, 5, 12, 13, 6, 7, 14, 15);
-    const V8 xx_yy_lo = __builtin_shufflevector(xx, yy, 0, 1, 8, 9, 2, 3, 10, 11);
-    const V8 xx_yy_hi = __builtin_shufflevector(xx, yy, 4, 5, 12, 13, 6, 7, 14, 15);
-    const V8 zero{};
-    const V8 xy_xz_lo = __builtin_shufflevector(xy, xz, 0, 1, 8, 9, 2, 3, 10, 11);
-    const V8 xy_xz_hi = __builtin_shufflevector(xy, xz, 4, 5, 12, 13, 6, 7, 14, 15);
-    const V8 yz_0_lo = __builtin_shufflevector(yz, zero, 0, 1, 8, 9, 2, 3, 10, 11);
-    const V8 yz_0_hi = __builtin_shufflevector(yz, zero, 4, 5, 12, 13, 6, 7, 14, 15);
-    acc_a += __builtin_shufflevector(x_y_lo, xx_yy_lo, 0, 1, 2, 3, 8, 9, 10, 11);
-    acc_b += __builtin_shufflevector(xy_xz_lo, yz_0_lo, 0, 1, 2, 3, 8, 9, 10, 11);
-    acc_a += __builtin_shufflevector(x_y_lo, xx_yy_lo, 4, 5, 6, 7, 12, 13, 14, 15);
-    acc_b += __builtin_shufflevector(xy_xz_lo, yz_0_lo, 4, 5, 6, 7, 12, 13, 14, 15);
-    acc_a += __builtin_shufflevector(x_y_hi, xx_yy_hi, 0, 1, 2, 3, 8, 9, 10, 11);
-    acc_b += __builtin_shufflevector(xy_xz_hi, yz_0_hi, 0, 1, 2, 3, 8, 9, 10, 11);
-    acc_a += __builtin_shufflevector(x_y_hi, xx_yy_hi, 4, 5, 6, 7, 12, 13, 14, 15);
-    acc_b += __builtin_shufflevector(xy_xz_hi, yz_0_hi, 4, 5, 6, 7, 12, 13, 14, 15);
+    add_packets(acc_a, acc_b, x, y, xx, yy, xy, xz, yz, V8{});
   }
-  const auto part = [](const V8& v, int k) {
-    return k == 0   ? Lanes<2>(__builtin_shufflevector(v, v, 0, 1))
-           : k == 1 ? Lanes<2>(__builtin_shufflevector(v, v, 2, 3))
-           : k == 2 ? Lanes<2>(__builtin_shufflevector(v, v, 4, 5))
-                    : Lanes<2>(__builtin_shufflevector(v, v, 6, 7));
-  };
-  m.sx = part(acc_a, 0);
-  m.sy = part(acc_a, 1);
-  m.sxx = part(acc_a, 2);
-  m.syy = part(acc_a, 3);
-  m.sxy = part(acc_b, 0);
-  m.sxz = part(acc_b, 1);
-  m.syz = part(acc_b, 2);
+  split_packets(acc_a, acc_b, {&m.sx, &m.sy, &m.sxx, &m.syy, &m.sxy, &m.sxz, &m.syz, nullptr});
   for (int k = 0; k < 4; ++k) {
     m.lo = lanes_min(m.lo, part(lo, k));
     m.hi = lanes_max(m.hi, part(hi, k));
   }
+  return i;
+}
+#endif
+
+// ---- points on rays ---------------------------------------------------------------------------
+// least_squares_circle_on_rays's two passes. Pass 1: the unit directions (stored) and eight
+// sums in two lanes (as the load pass; ray_pair, ray_blocks_avx512). Pass 2: the residuals
+// (stored), their extremes and two sums in four lanes (lane j the points i ≡ j mod 4, added as
+// (l₀ + l₂) + (l₁ + l₃)) — with AVX-512 the halves of 8 points in point order, as the GN passes.
+
+struct RayInput {
+  const double* w;
+  const double* ray_x;
+  const double* ray_y;
+  const double* inv_length;
+  double* ux;
+  double* uy;
+};
+
+/// The eight sums of pass 1 (two lanes each).
+struct RaySums {
+  Lanes<2> w{}, ux{}, uy{}, uxw{}, uyw{}, uxx{}, uxy{}, uyy{};
+};
+
+/// Points i, i + 1 of pass 1.
+[[gnu::always_inline]] inline void ray_pair(const RayInput& in, std::size_t i, RaySums& m) {
+  const Lanes<2> inv = internal::load<Lanes<2>>(in.inv_length + i);
+  const Lanes<2> x = internal::load<Lanes<2>>(in.ray_x + i) * inv;
+  const Lanes<2> y = internal::load<Lanes<2>>(in.ray_y + i) * inv;
+  const Lanes<2> w = internal::load<Lanes<2>>(in.w + i);
+  internal::store(in.ux + i, x);
+  internal::store(in.uy + i, y);
+  m.w += w;
+  m.ux += x;
+  m.uy += y;
+  m.uxw += x * w;
+  m.uyw += y * w;
+  m.uxx += x * x;
+  m.uxy += x * y;
+  m.uyy += y * y;
+}
+
+/// The residual sums of pass 2 (lanes as described above, or one point: V = double).
+template <class V>
+struct ResidualLanes {
+  V max = V{} - std::numeric_limits<double>::infinity();
+  V min = V{} + std::numeric_limits<double>::infinity();
+  V e{}, ee{};
+};
+
+struct ResidualInput {
+  const double* w;
+  const double* ux;
+  const double* uy;
+  double* e;
+  double dx, dy;
+};
+
+/// The residuals of the points at i (V = Lanes<W> or double): stored, their terms returned.
+template <class V>
+[[gnu::always_inline]] inline V residuals(const ResidualInput& in, std::size_t i) {
+  const V ei = internal::load<V>(in.w + i) -
+               (internal::load<V>(in.ux + i) * in.dx + internal::load<V>(in.uy + i) * in.dy);
+  internal::store(in.e + i, ei);
+  return ei;
+}
+
+template <class V>
+[[gnu::always_inline]] inline void add_residuals(const ResidualInput& in, std::size_t i,
+                                                 ResidualLanes<V>& a) {
+  const V ei = residuals<V>(in, i);
+  a.max = lanes_max(a.max, ei);
+  a.min = lanes_min(a.min, ei);
+  a.e += ei;
+  a.ee += ei * ei;
+}
+
+#if VCMM_GEOMETRY_X86
+/// Pass 1 on blocks of 8 points from 0 while they fit below `packed`; returns the first point
+/// not taken. Element-wise the operations of ray_pair, the sums added as there (add_packets).
+__attribute__((target("avx512f"))) std::size_t ray_blocks_avx512(const RayInput& in,
+                                                                 std::size_t packed,
+                                                                 RaySums& m) {
+  using V8 = Lanes<8>;
+  V8 acc_a = join_packets(m.w, m.ux, m.uy, m.uxw);     // [w | ux | uy | uxw]
+  V8 acc_b = join_packets(m.uyw, m.uxx, m.uxy, m.uyy);  // [uyw | uxx | uxy | uyy]
+  std::size_t i = 0;
+  for (; i + 8 <= packed; i += 8) {
+    const V8 inv = internal::load<V8>(in.inv_length + i);
+    const V8 x = internal::load<V8>(in.ray_x + i) * inv;
+    const V8 y = internal::load<V8>(in.ray_y + i) * inv;
+    const V8 w = internal::load<V8>(in.w + i);
+    internal::store(in.ux + i, x);
+    internal::store(in.uy + i, y);
+    add_packets(acc_a, acc_b, w, x, y, x * w, y * w, x * x, x * y, y * y);
+  }
+  split_packets(acc_a, acc_b, {&m.w, &m.ux, &m.uy, &m.uxw, &m.uyw, &m.uxx, &m.uxy, &m.uyy});
+  return i;
+}
+
+/// Pass 2 on blocks of 8 points from 0 while they fit below `packed`, into the four lanes of
+/// a (the halves of each block in point order); returns the first point not taken.
+__attribute__((target("avx512f"))) std::size_t residual_blocks_avx512(const ResidualInput& in,
+                                                                      std::size_t packed,
+                                                                      ResidualLanes<Lanes<4>>& a) {
+  using V8 = Lanes<8>;
+  V8 e_ee = __builtin_shufflevector(a.e, a.ee, 0, 1, 2, 3, 4, 5, 6, 7);  // [e | ee]
+  ResidualLanes<V8> x;  // the extremes
+  std::size_t i = 0;
+  for (; i + 8 <= packed; i += 8) {
+    const V8 ei = residuals<V8>(in, i);
+    x.max = lanes_max(x.max, ei);
+    x.min = lanes_min(x.min, ei);
+    const V8 sq = ei * ei;
+    e_ee += __builtin_shufflevector(ei, sq, 0, 1, 2, 3, 8, 9, 10, 11);
+    e_ee += __builtin_shufflevector(ei, sq, 4, 5, 6, 7, 12, 13, 14, 15);
+  }
+  a.e = internal::low_half(e_ee);
+  a.ee = internal::high_half(e_ee);
+  a.max = lanes_max(a.max, lanes_max(internal::low_half(x.max), internal::high_half(x.max)));
+  a.min = lanes_min(a.min, lanes_min(internal::low_half(x.min), internal::high_half(x.min)));
   return i;
 }
 #endif
@@ -930,8 +1071,7 @@ LeastSquaresCircle fit_circle(std::span<const Point2> points, bool check_points)
 std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
     Point2 center, double radius, const double* w, const double* ray_x, const double* ray_y,
     const double* inv_length, std::size_t count) {
-  const auto n = static_cast<Eigen::Index>(count);
-  const Eigen::Index packed = n - n % kLanes;
+  const std::size_t n = count, packed = n - n % 2;
   const double nd = static_cast<double>(n);
   thread_local Workspace ws;
   ws.x.resize(count);
@@ -940,31 +1080,23 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
   double* ux = ws.x.data();
   double* uy = ws.y.data();
   double* e = ws.r.data();
+#if VCMM_GEOMETRY_X86
+  const bool avx512 = internal::use_avx512();
+#endif
 
-  // Pass 1: unit directions (stored for pass 2) and the sums of the GN step at the centre
-  // (eight sums: one packet an iteration keeps them in registers).
-  Packet sw = simd::pset1<Packet>(0.0), sux = sw, suy = sw, suxw = sw, suyw = sw, suxx = sw,
-         suxy = sw, suyy = sw;
-  for (Eigen::Index i = 0; i < packed; i += kLanes) {
-    const Packet inv = simd::ploadu<Packet>(inv_length + i);
-    const Packet x = simd::pmul(simd::ploadu<Packet>(ray_x + i), inv);
-    const Packet y = simd::pmul(simd::ploadu<Packet>(ray_y + i), inv);
-    const Packet wi = simd::ploadu<Packet>(w + i);
-    simd::pstoreu(ux + i, x);
-    simd::pstoreu(uy + i, y);
-    sw = simd::padd(sw, wi);
-    sux = simd::padd(sux, x);
-    suy = simd::padd(suy, y);
-    suxw = simd::pmadd(x, wi, suxw);
-    suyw = simd::pmadd(y, wi, suyw);
-    suxx = simd::pmadd(x, x, suxx);
-    suxy = simd::pmadd(x, y, suxy);
-    suyy = simd::pmadd(y, y, suyy);
-  }
-  double s_w = simd::predux(sw), s_ux = simd::predux(sux), s_uy = simd::predux(suy);
-  double s_uxw = simd::predux(suxw), s_uyw = simd::predux(suyw);
-  double s_uxx = simd::predux(suxx), s_uxy = simd::predux(suxy), s_uyy = simd::predux(suyy);
-  for (Eigen::Index i = packed; i < n; ++i) {
+  // Pass 1: unit directions (stored for pass 2) and the sums of the GN step at the centre.
+  const RayInput rays{w, ray_x, ray_y, inv_length, ux, uy};
+  RaySums m;
+  std::size_t i = 0;
+#if VCMM_GEOMETRY_X86
+  if (avx512) i = ray_blocks_avx512(rays, packed, m);
+#endif
+  for (; i < packed; i += 2) ray_pair(rays, i, m);
+  double s_w = m.w[0] + m.w[1], s_ux = m.ux[0] + m.ux[1], s_uy = m.uy[0] + m.uy[1];
+  double s_uxw = m.uxw[0] + m.uxw[1], s_uyw = m.uyw[0] + m.uyw[1];
+  double s_uxx = m.uxx[0] + m.uxx[1], s_uxy = m.uxy[0] + m.uxy[1];
+  double s_uyy = m.uyy[0] + m.uyy[1];
+  for (i = packed; i < n; ++i) {
     const double x = ray_x[i] * inv_length[i], y = ray_y[i] * inv_length[i];
     ux[i] = x;
     uy[i] = y;
@@ -988,43 +1120,41 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
   const double step = std::hypot(dx, dy);
   if (!(step <= 0x1.0p-30 * radius)) return std::nullopt;
 
-  // Pass 2: residuals about R, e_i = w_i − u_i·δ (the distance from c + δ minus R); two
-  // packets an iteration into two sets of extremes and sums (halves the latency chains).
-  const Packet pdx = simd::pset1<Packet>(dx), pdy = simd::pset1<Packet>(dy);
-  struct ResidualSums {
-    Packet max = simd::pset1<Packet>(-std::numeric_limits<double>::infinity());
-    Packet min = simd::pset1<Packet>(std::numeric_limits<double>::infinity());
-    Packet e = simd::pset1<Packet>(0.0), ee = e;
-  };
-  const auto add_residuals = [&](ResidualSums& a, Eigen::Index k) {
-    const Packet ei = simd::psub(
-        simd::ploadu<Packet>(w + k),
-        simd::pmadd(simd::ploadu<Packet>(ux + k), pdx,
-                    simd::pmul(simd::ploadu<Packet>(uy + k), pdy)));
-    simd::pstoreu(e + k, ei);
-    a.max = simd::pmax(a.max, ei);
-    a.min = simd::pmin(a.min, ei);
-    a.e = simd::padd(a.e, ei);
-    a.ee = simd::pmadd(ei, ei, a.ee);
-  };
-  ResidualSums e1, e2;
-  Eigen::Index i = 0;
-  for (; i + 2 * kLanes <= packed; i += 2 * kLanes) {
-    add_residuals(e1, i);
-    add_residuals(e2, i + kLanes);
+  // Pass 2: residuals about R, e_i = w_i − u_i·δ (the distance from c + δ minus R), in four
+  // lanes: two 2-lane packets an iteration (one AVX-512 vector of 8 points), a last packet
+  // into lanes 0 and 1, the last point alone.
+  const ResidualInput res{w, ux, uy, e, dx, dy};
+  ResidualLanes<Lanes<4>> r4;
+  i = 0;
+#if VCMM_GEOMETRY_X86
+  if (avx512) i = residual_blocks_avx512(res, packed, r4);
+#endif
+  ResidualLanes<Lanes<2>> r2[2];
+  for (int h = 0; h < 2; ++h) {  // r4 as two packets
+    r2[h].max = Lanes<2>{r4.max[2 * h], r4.max[2 * h + 1]};
+    r2[h].min = Lanes<2>{r4.min[2 * h], r4.min[2 * h + 1]};
+    r2[h].e = Lanes<2>{r4.e[2 * h], r4.e[2 * h + 1]};
+    r2[h].ee = Lanes<2>{r4.ee[2 * h], r4.ee[2 * h + 1]};
   }
-  if (i < packed) add_residuals(e1, i);
-  double e_max = simd::predux_max(simd::pmax(e1.max, e2.max));
-  double e_min = simd::predux_min(simd::pmin(e1.min, e2.min));
-  double s_e = simd::predux(simd::padd(e1.e, e2.e));
-  double s_ee = simd::predux(simd::padd(e1.ee, e2.ee));
+  for (; i + 4 <= packed; i += 4) {
+    add_residuals(res, i, r2[0]);
+    add_residuals(res, i + 2, r2[1]);
+  }
+  if (i < packed) add_residuals(res, i, r2[0]);
+  const Lanes<2> lane_max = lanes_max(r2[0].max, r2[1].max);
+  const Lanes<2> lane_min = lanes_min(r2[0].min, r2[1].min);
+  const Lanes<2> lane_e = r2[0].e + r2[1].e, lane_ee = r2[0].ee + r2[1].ee;
+  double e_max = std::max(lane_max[0], lane_max[1]);
+  double e_min = std::min(lane_min[0], lane_min[1]);
+  double s_e = lane_e[0] + lane_e[1];
+  double s_ee = lane_ee[0] + lane_ee[1];
   for (i = packed; i < n; ++i) {
-    const double ei = w[i] - (ux[i] * dx + uy[i] * dy);
-    e[i] = ei;
-    e_max = std::max(e_max, ei);
-    e_min = std::min(e_min, ei);
-    s_e += ei;
-    s_ee += ei * ei;
+    ResidualLanes<double> t;
+    add_residuals(res, i, t);
+    e_max = std::max(e_max, t.max);
+    e_min = std::min(e_min, t.min);
+    s_e += t.e;
+    s_ee += t.ee;
   }
   // The exactness bound needs |δ| ≤ 2⁻³⁰ min_i (R + w_i); R + w_i ≥ R + e_min − |δ|.
   const double rho_min = radius + e_min - step;
@@ -1034,7 +1164,8 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
   out.center = {center.x + dx, center.y + dy};
   out.radius = radius + ebar;
   out.iterations = 1;
-  out.contacts = {first_index(e, n, e_max), first_index(e, n, e_min)};
+  const auto signed_n = static_cast<Eigen::Index>(n);
+  out.contacts = {first_index(e, signed_n, e_max), first_index(e, signed_n, e_min)};
   out.ron.ront = e_max - e_min;
   out.ron.ronp = std::max(0.0, e_max - ebar);
   out.ron.ronv = std::max(0.0, ebar - e_min);

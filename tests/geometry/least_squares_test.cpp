@@ -11,10 +11,13 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "../../geometry/src/internal/isa.h"
+#include "../../geometry/src/internal/least_squares_on_rays.h"
 #include "support/test_profiles.h"
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/roundness_parameters.h"
@@ -336,6 +339,46 @@ TEST_P(LeastSquaresRegimes, InstructionSetVariantsGiveTheSameBits) {
       EXPECT_EQ(std::memcmp(&fit.ron, &other.ron, sizeof fit.ron), 0) << seed << v;
       EXPECT_EQ(fit.contacts, other.contacts) << seed << v;
       EXPECT_EQ(fit.iterations, other.iterations) << seed << v;
+    }
+  }
+}
+
+// The one step on rays (the filter's output, internal/least_squares_on_rays.h) runs as
+// AVX-512 or baseline code: the same bits, for every n mod 8 (blocks of 8, packets of 2, an
+// odd last point).
+TEST(LeastSquaresCircleOnRays, InstructionSetVariantsGiveTheSameBits) {
+  using vcmm::geometry::internal::Isa;
+  using vcmm::geometry::internal::least_squares_circle_on_rays;
+  std::mt19937_64 rng(20261127);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (const std::size_t n : {3, 5, 8, 9, 12, 14, 15, 1007, 3600, 3601, 3602, 3604, 3606}) {
+    // Rays from the centre, slightly off an equiangular grid and not of unit length.
+    std::vector<double> w(n), rx(n), ry(n), inv(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = 2.0 * kPi * (static_cast<double>(i) + 1e-6 * noise(rng)) /
+                       static_cast<double>(n);
+      const double len = 85.5 * (1.0 + 1e-5 * noise(rng));
+      rx[i] = len * std::cos(a);
+      ry[i] = len * std::sin(a);
+      inv[i] = 1.0 / std::hypot(rx[i], ry[i]);
+      w[i] = 1e-4 * std::cos(3.0 * a + 0.3) + 1e-9 * noise(rng);  // LS centre ≈ c
+    }
+    const Point2 c{10.0, -20.0};
+    const auto fit = least_squares_circle_on_rays(c, 85.5, w.data(), rx.data(), ry.data(),
+                                                  inv.data(), n);
+    ASSERT_TRUE(fit.has_value()) << n;
+    for (const Isa isa : {Isa::avx2, Isa::baseline}) {
+      std::optional<LeastSquaresCircle> other;
+      {
+        const vcmm::geometry::internal::LimitIsa limit(isa);
+        other = least_squares_circle_on_rays(c, 85.5, w.data(), rx.data(), ry.data(),
+                                             inv.data(), n);
+      }
+      ASSERT_TRUE(other.has_value()) << n;
+      EXPECT_EQ(std::memcmp(&fit->center, &other->center, sizeof fit->center), 0) << n;
+      EXPECT_EQ(std::memcmp(&fit->radius, &other->radius, sizeof fit->radius), 0) << n;
+      EXPECT_EQ(std::memcmp(&fit->ron, &other->ron, sizeof fit->ron), 0) << n;
+      EXPECT_EQ(fit->contacts, other->contacts) << n;
     }
   }
 }

@@ -92,8 +92,8 @@
 #include "internal/prevalidated.h"
 #include "internal/vec.h"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
+#if VCMM_GEOMETRY_X86
+#include <immintrin.h>
 #endif
 
 namespace vcmm::geometry {
@@ -120,7 +120,7 @@ using Packet = simd::packet_traits<double>::type;
 constexpr Eigen::Index kLanes = simd::packet_traits<double>::size;
 
 /// First index i < n with a[i] == v (v is a value of a): packet scan, four packets per test.
-std::size_t first_index(const double* a, Eigen::Index n, double v) {
+std::size_t first_index_baseline(const double* a, Eigen::Index n, double v) {
   const Packet pv = simd::pset1<Packet>(v);
   Eigen::Index i = 0;
   const Eigen::Index block = 4 * kLanes;
@@ -135,6 +135,33 @@ std::size_t first_index(const double* a, Eigen::Index n, double v) {
   }
   while (i < n && a[i] != v) ++i;
   return static_cast<std::size_t>(i);
+}
+
+#if VCMM_GEOMETRY_X86
+/// first_index_baseline with 8-lane vectors (four per test).
+__attribute__((target("avx512f"))) std::size_t first_index_avx512(const double* a,
+                                                                  Eigen::Index n, double v) {
+  const __m512d pv = _mm512_set1_pd(v);
+  Eigen::Index i = 0;
+  for (; i + 32 <= n; i += 32) {
+    const __mmask8 hit =
+        static_cast<__mmask8>(_mm512_cmp_pd_mask(_mm512_loadu_pd(a + i), pv, _CMP_EQ_OQ) |
+                              _mm512_cmp_pd_mask(_mm512_loadu_pd(a + i + 8), pv, _CMP_EQ_OQ) |
+                              _mm512_cmp_pd_mask(_mm512_loadu_pd(a + i + 16), pv, _CMP_EQ_OQ) |
+                              _mm512_cmp_pd_mask(_mm512_loadu_pd(a + i + 24), pv, _CMP_EQ_OQ));
+    if (hit != 0) break;
+  }
+  while (i < n && a[i] != v) ++i;
+  return static_cast<std::size_t>(i);
+}
+#endif
+
+/// First index i < n with a[i] == v (v is a value of a).
+std::size_t first_index(const double* a, Eigen::Index n, double v) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return first_index_avx512(a, n, v);
+#endif
+  return first_index_baseline(a, n, v);
 }
 
 /// Spans of the data (mm) the fit handles: the Kåsa start forms products up to the 5th power

@@ -438,13 +438,8 @@ __attribute__((target("avx512f"))) PassSums gn_pass_avx512(const PassInput& inpu
   const PassInput in = input;
   using V8 = Lanes<8>;
   using V4 = Lanes<4>;
-  // [a low half | b low half], [a high half | b high half].
-  const auto lows = [](const V8& a, const V8& b) {
-    return __builtin_shufflevector(a, b, 0, 1, 2, 3, 8, 9, 10, 11);
-  };
-  const auto highs = [](const V8& a, const V8& b) {
-    return __builtin_shufflevector(a, b, 4, 5, 6, 7, 12, 13, 14, 15);
-  };
+  using internal::high_halves;
+  using internal::low_halves;
   V8 d_dd{}, vx_vy{}, vxd_vyd{}, vxx_vyy{};
   V4 vxy{};
   PassLanes<V8> e;  // the extremes only
@@ -453,17 +448,17 @@ __attribute__((target("avx512f"))) PassSums gn_pass_avx512(const PassInput& inpu
     const PassTerms<V8> t = pass_terms<kFull, D, V8>(in, i);
     add_extremes<D>(e, t);
     if constexpr (kFull) {
-      vxx_vyy += lows(t.vxx, t.vyy);
-      vxx_vyy += highs(t.vxx, t.vyy);
+      vxx_vyy += low_halves(t.vxx, t.vyy);
+      vxx_vyy += high_halves(t.vxx, t.vyy);
       vxy += internal::low_half(t.vxy);
       vxy += internal::high_half(t.vxy);
     }
-    d_dd += lows(t.d, t.dd);
-    d_dd += highs(t.d, t.dd);
-    vx_vy += lows(t.vx, t.vy);
-    vx_vy += highs(t.vx, t.vy);
-    vxd_vyd += lows(t.vxd, t.vyd);
-    vxd_vyd += highs(t.vxd, t.vyd);
+    d_dd += low_halves(t.d, t.dd);
+    d_dd += high_halves(t.d, t.dd);
+    vx_vy += low_halves(t.vx, t.vy);
+    vx_vy += high_halves(t.vx, t.vy);
+    vxd_vyd += low_halves(t.vxd, t.vyd);
+    vxd_vyd += high_halves(t.vxd, t.vyd);
   }
   PassLanes<V4> a[1];
   a[0].sd = internal::low_half(d_dd);
@@ -735,7 +730,7 @@ __attribute__((target("avx512f"))) std::size_t residual_blocks_avx512(const Resi
                                                                       std::size_t packed,
                                                                       ResidualLanes<Lanes<4>>& a) {
   using V8 = Lanes<8>;
-  V8 e_ee = __builtin_shufflevector(a.e, a.ee, 0, 1, 2, 3, 4, 5, 6, 7);  // [e | ee]
+  V8 e_ee = internal::concat(a.e, a.ee);  // [e | ee]
   ResidualLanes<V8> x;  // the extremes
   std::size_t i = 0;
   for (; i + 8 <= packed; i += 8) {
@@ -743,8 +738,8 @@ __attribute__((target("avx512f"))) std::size_t residual_blocks_avx512(const Resi
     x.max = lanes_max(x.max, ei);
     x.min = lanes_min(x.min, ei);
     const V8 sq = ei * ei;
-    e_ee += __builtin_shufflevector(ei, sq, 0, 1, 2, 3, 8, 9, 10, 11);
-    e_ee += __builtin_shufflevector(ei, sq, 4, 5, 6, 7, 12, 13, 14, 15);
+    e_ee += internal::low_halves(ei, sq);
+    e_ee += internal::high_halves(ei, sq);
   }
   a.e = internal::low_half(e_ee);
   a.ee = internal::high_half(e_ee);

@@ -43,6 +43,21 @@ struct VecOf<8> {
 [[gnu::always_inline]] inline VecOf<4>::type high_half(const VecOf<8>::type& v) {
   return __builtin_shufflevector(v, v, 4, 5, 6, 7);
 }
+/// [low half of a | low half of b] and [high half of a | high half of b]: two four-lane sums
+/// kept side by side in one 8-lane accumulator take the halves of two 8-lane terms in order.
+[[gnu::always_inline]] inline VecOf<8>::type low_halves(const VecOf<8>::type& a,
+                                                        const VecOf<8>::type& b) {
+  return __builtin_shufflevector(a, b, 0, 1, 2, 3, 8, 9, 10, 11);
+}
+[[gnu::always_inline]] inline VecOf<8>::type high_halves(const VecOf<8>::type& a,
+                                                         const VecOf<8>::type& b) {
+  return __builtin_shufflevector(a, b, 4, 5, 6, 7, 12, 13, 14, 15);
+}
+/// [a | b] from two four-lane vectors.
+[[gnu::always_inline]] inline VecOf<8>::type concat(const VecOf<4>::type& a,
+                                                    const VecOf<4>::type& b) {
+  return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
+}
 
 /// T (a VecOf type, or double) from p (unaligned).
 template <class T>

@@ -68,8 +68,9 @@
 // point falls outside (then with square root and division beyond |s| = 2⁻⁹). The centre and
 // radius move by ulps at most against square roots (the rare r_i that differ by an ulp).
 //
-// Cost: one pass for the start (no square root), then per GN iteration one vectorised pass
-// (AVX2 where the CPU has it, else SSE2; the same bits, see "the Gauss-Newton pass" below)
+// Cost: one pass for the start (no square root; it also proves every coordinate finite for
+// least_squares_circle's input check), then per GN iteration one vectorised pass (AVX-512 or
+// AVX2 where the CPU has it, else SSE2; the same bits, see "the Gauss-Newton pass" below)
 // that also keeps the extremes of r and Σ d² — the residual summary needs no pass of its own:
 // Σ e² = Σ d² − n d̄² and the contacts are the first indices of the extremes. Typically 2
 // iterations: the step from the Kåsa centre, then the pass that finds the next step
@@ -234,12 +235,13 @@ void check_span(const Extent& e) {
 // One pass over the local coordinates at a centre: r_i, d_i = r_i − R₀, u_i = (p_i − c)/r_i and
 // the sums of (1), plus the extremes of r and, on a series pass, max |s|. Distances and their
 // reciprocals by the series of internal/near_circle.h (degree D = 3, 4, 6) or, D = 0, by
-// square root and division. Written on GCC vectors of W lanes and compiled twice (internal/
-// isa.h): W = 2 for the baseline (SSE2), W = 4 in a target("avx2") function. Every sum is
-// accumulated in four lanes whatever W — lane j takes the points i ≡ j (mod 4), one AVX2
-// vector or two SSE2 vectors — and the lanes are added as (l₀ + l₂) + (l₁ + l₃), then the last
-// n mod 4 points in order: the same operations in the same order on every element, so both
-// variants give the same bits (no FMA: -ffp-contract=off).
+// square root and division. Written on GCC vectors of W lanes and compiled three times
+// (internal/isa.h): W = 2 for the baseline (SSE2), W = 4 in a target("avx2") function, W = 8
+// in a target("avx512f") one. Every sum is accumulated in four lanes whatever W — lane j takes
+// the points i ≡ j (mod 4), one AVX2 vector, two SSE2 vectors or the low then the high half of
+// an AVX-512 vector — and the lanes are added as (l₀ + l₂) + (l₁ + l₃), then the last n mod 4
+// points in order: the same operations in the same order on every element, so all variants
+// give the same bits (no FMA: -ffp-contract=off).
 
 template <int W>
 using Lanes = typename internal::VecOf<W>::type;

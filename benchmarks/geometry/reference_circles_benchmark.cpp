@@ -15,12 +15,15 @@
 // ring of the same size (within ~10×, no worse than O(n log n) growth).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <functional>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "../../geometry/src/internal/isa.h"
+#include "../../geometry/src/internal/least_squares_on_rays.h"
 #include "support/test_profiles.h"
 #include "vcmm/geometry/angular_coverage.h"
 #include "vcmm/geometry/certificate.h"
@@ -52,6 +55,15 @@ void BM_LeastSquares(benchmark::State& state) {
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_LeastSquares)->Apply(sizes);
+
+// The same with the widest instruction-set variant its passes may take (0: baseline, 1: AVX2,
+// 2: AVX-512; internal/isa.h — a variant the CPU lacks falls back to the next narrower one).
+void BM_LeastSquaresIsa(benchmark::State& state) {
+  const auto& p = profile(static_cast<std::size_t>(state.range(0)));
+  const g::internal::LimitIsa limit(static_cast<g::internal::Isa>(state.range(1)));
+  for (auto _ : state) benchmark::DoNotOptimize(g::least_squares_circle(p));
+}
+BENCHMARK(BM_LeastSquaresIsa)->ArgsProduct({{3600}, {0, 1, 2}})->Unit(benchmark::kMicrosecond);
 
 void BM_MinimumZone(benchmark::State& state) {
   const auto& p = profile(static_cast<std::size_t>(state.range(0)));
@@ -101,6 +113,41 @@ void BM_GaussianFilterSharedLs(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(g::gaussian_filtered_profile(p, 50.0, ls));
 }
 BENCHMARK(BM_GaussianFilterSharedLs)->Apply(sizes);
+
+// The LS circle of the filtered profile as the Monte Carlo trial takes it (filter, then one
+// step on the rays: gaussian_filtered_least_squares_circle), with the widest instruction-set
+// variant allowed as in BM_LeastSquaresIsa.
+void BM_FilteredLeastSquaresIsa(benchmark::State& state) {
+  const auto& p = profile(static_cast<std::size_t>(state.range(0)));
+  const g::LeastSquaresCircle ls = g::least_squares_circle(p);
+  const g::internal::LimitIsa limit(static_cast<g::internal::Isa>(state.range(1)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(g::gaussian_filtered_least_squares_circle(p, 50.0, ls, true));
+}
+BENCHMARK(BM_FilteredLeastSquaresIsa)
+    ->ArgsProduct({{3600}, {0, 1, 2}})
+    ->Unit(benchmark::kMicrosecond);
+
+// Its last step alone (internal/least_squares_on_rays.h): the profile's own rays from its LS
+// centre, w the deviations from the LS radius.
+void BM_LeastSquaresOnRaysIsa(benchmark::State& state) {
+  const auto& p = profile(static_cast<std::size_t>(state.range(0)));
+  const g::LeastSquaresCircle ls = g::least_squares_circle(p);
+  std::vector<double> w, x, y, inv;
+  for (const g::Point2& q : p) {
+    x.push_back(q.x - ls.center.x);
+    y.push_back(q.y - ls.center.y);
+    inv.push_back(1.0 / std::hypot(x.back(), y.back()));
+    w.push_back(std::hypot(x.back(), y.back()) - ls.radius);
+  }
+  const g::internal::LimitIsa limit(static_cast<g::internal::Isa>(state.range(1)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(g::internal::least_squares_circle_on_rays(
+        ls.center, ls.radius, w.data(), x.data(), y.data(), inv.data(), p.size()));
+}
+BENCHMARK(BM_LeastSquaresOnRaysIsa)
+    ->ArgsProduct({{3600}, {0, 1, 2}})
+    ->Unit(benchmark::kMicrosecond);
 
 // The whole evaluation of the target: filter (50 UPR) + LS + MZ + MI + MC.
 /// The coverage evaluate_roundness reports: a scan in angular order about its LS centre (the

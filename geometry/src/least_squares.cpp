@@ -68,8 +68,9 @@
 // point falls outside (then with square root and division beyond |s| = 2⁻⁹). The centre and
 // radius move by ulps at most against square roots (the rare r_i that differ by an ulp).
 //
-// Cost: one pass for the start (no square root), then per GN iteration one vectorised pass
-// (AVX2 where the CPU has it, else SSE2; the same bits, see "the Gauss-Newton pass" below)
+// Cost: one pass for the start (no square root; it also proves every coordinate finite for
+// least_squares_circle's input check), then per GN iteration one vectorised pass (AVX-512 or
+// AVX2 where the CPU has it, else SSE2; the same bits, see "the Gauss-Newton pass" below)
 // that also keeps the extremes of r and Σ d² — the residual summary needs no pass of its own:
 // Σ e² = Σ d² − n d̄² and the contacts are the first indices of the extremes. Typically 2
 // iterations: the step from the Kåsa centre, then the pass that finds the next step
@@ -92,8 +93,8 @@
 #include "internal/prevalidated.h"
 #include "internal/vec.h"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
+#if VCMM_GEOMETRY_X86
+#include <immintrin.h>
 #endif
 
 namespace vcmm::geometry {
@@ -120,7 +121,7 @@ using Packet = simd::packet_traits<double>::type;
 constexpr Eigen::Index kLanes = simd::packet_traits<double>::size;
 
 /// First index i < n with a[i] == v (v is a value of a): packet scan, four packets per test.
-std::size_t first_index(const double* a, Eigen::Index n, double v) {
+std::size_t first_index_baseline(const double* a, Eigen::Index n, double v) {
   const Packet pv = simd::pset1<Packet>(v);
   Eigen::Index i = 0;
   const Eigen::Index block = 4 * kLanes;
@@ -135,6 +136,33 @@ std::size_t first_index(const double* a, Eigen::Index n, double v) {
   }
   while (i < n && a[i] != v) ++i;
   return static_cast<std::size_t>(i);
+}
+
+#if VCMM_GEOMETRY_X86
+/// first_index_baseline with 8-lane vectors (four per test).
+__attribute__((target("avx512f"))) std::size_t first_index_avx512(const double* a,
+                                                                  Eigen::Index n, double v) {
+  const __m512d pv = _mm512_set1_pd(v);
+  Eigen::Index i = 0;
+  for (; i + 32 <= n; i += 32) {
+    const __mmask8 hit =
+        static_cast<__mmask8>(_mm512_cmp_pd_mask(_mm512_loadu_pd(a + i), pv, _CMP_EQ_OQ) |
+                              _mm512_cmp_pd_mask(_mm512_loadu_pd(a + i + 8), pv, _CMP_EQ_OQ) |
+                              _mm512_cmp_pd_mask(_mm512_loadu_pd(a + i + 16), pv, _CMP_EQ_OQ) |
+                              _mm512_cmp_pd_mask(_mm512_loadu_pd(a + i + 24), pv, _CMP_EQ_OQ));
+    if (hit != 0) break;
+  }
+  while (i < n && a[i] != v) ++i;
+  return static_cast<std::size_t>(i);
+}
+#endif
+
+/// First index i < n with a[i] == v (v is a value of a).
+std::size_t first_index(const double* a, Eigen::Index n, double v) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return first_index_avx512(a, n, v);
+#endif
+  return first_index_baseline(a, n, v);
 }
 
 /// Spans of the data (mm) the fit handles: the Kåsa start forms products up to the 5th power
@@ -207,12 +235,13 @@ void check_span(const Extent& e) {
 // One pass over the local coordinates at a centre: r_i, d_i = r_i − R₀, u_i = (p_i − c)/r_i and
 // the sums of (1), plus the extremes of r and, on a series pass, max |s|. Distances and their
 // reciprocals by the series of internal/near_circle.h (degree D = 3, 4, 6) or, D = 0, by
-// square root and division. Written on GCC vectors of W lanes and compiled twice (internal/
-// isa.h): W = 2 for the baseline (SSE2), W = 4 in a target("avx2") function. Every sum is
-// accumulated in four lanes whatever W — lane j takes the points i ≡ j (mod 4), one AVX2
-// vector or two SSE2 vectors — and the lanes are added as (l₀ + l₂) + (l₁ + l₃), then the last
-// n mod 4 points in order: the same operations in the same order on every element, so both
-// variants give the same bits (no FMA: -ffp-contract=off).
+// square root and division. Written on GCC vectors of W lanes and compiled three times
+// (internal/isa.h): W = 2 for the baseline (SSE2), W = 4 in a target("avx2") function, W = 8
+// in a target("avx512f") one. Every sum is accumulated in four lanes whatever W — lane j takes
+// the points i ≡ j (mod 4), one AVX2 vector, two SSE2 vectors or the low then the high half of
+// an AVX-512 vector — and the lanes are added as (l₀ + l₂) + (l₁ + l₃), then the last n mod 4
+// points in order: the same operations in the same order on every element, so all variants
+// give the same bits (no FMA: -ffp-contract=off).
 
 template <int W>
 using Lanes = typename internal::VecOf<W>::type;
@@ -235,6 +264,9 @@ template <class V>
 #if defined(__SSE2__)
   if constexpr (sizeof(V) == 16) {
     return __builtin_ia32_sqrtpd(v);
+  } else if constexpr (sizeof(V) == 64) {
+    const Lanes<4> lo = lanes_sqrt(internal::low_half(v)), hi = lanes_sqrt(internal::high_half(v));
+    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
   } else {
     const Lanes<2> lo = __builtin_shufflevector(v, v, 0, 1);
     const Lanes<2> hi = __builtin_shufflevector(v, v, 2, 3);
@@ -267,97 +299,124 @@ struct PassLanes {
   V smax{};
 };
 
-/// The pass's work on the W points at i (V = Lanes<W>) or the one (V = double).
+/// The terms W points (V = Lanes<W>) or one (V = double) add to the sums of a pass, and what
+/// they give the extremes.
+template <class V>
+struct PassTerms {
+  V r, s_abs, d, dd, vx, vy, vxd, vyd, vxx, vxy, vyy;
+};
+
+/// The pass's work on the points at i: distances stored, the terms of the sums returned.
+template <bool kFull, int D, class V>
+[[gnu::always_inline]] inline PassTerms<V> pass_terms(const PassInput& in, std::size_t i) {
+  PassTerms<V> t{};
+  const V dx = internal::load<V>(in.x + i) - in.cx, dy = internal::load<V>(in.y + i) - in.cy;
+  const V q = dx * dx + dy * dy;
+  V w;
+  if constexpr (D > 0) {
+    const V s = internal::near_circle_s(q, in.k);
+    t.s_abs = lanes_abs(s);
+    t.r = in.k.r0 + internal::near_circle_offset<D>(s, in.k);
+    w = internal::near_circle_inverse<D>(s, in.k);
+  } else {
+    t.r = lanes_sqrt(q);
+    w = 1.0 / t.r;
+  }
+  internal::store(in.r + i, t.r);
+  t.d = t.r - in.r0;
+  t.vx = dx * w;
+  t.vy = dy * w;
+  if constexpr (kFull) {
+    t.vx = t.vx - in.urx;
+    t.vy = t.vy - in.ury;
+    t.vxx = t.vx * t.vx;
+    t.vxy = t.vx * t.vy;
+    t.vyy = t.vy * t.vy;
+  }
+  t.dd = t.d * t.d;
+  t.vxd = t.vx * t.d;
+  t.vyd = t.vy * t.d;
+  return t;
+}
+
+/// Adds the terms to the sums (same lanes).
+template <bool kFull, class V>
+[[gnu::always_inline]] inline void add_sums(PassLanes<V>& a, const PassTerms<V>& t) {
+  if constexpr (kFull) {
+    a.svxx += t.vxx;
+    a.svxy += t.vxy;
+    a.svyy += t.vyy;
+  }
+  a.sdd += t.dd;
+  a.sd += t.d;
+  a.svx += t.vx;
+  a.svy += t.vy;
+  a.svxd += t.vxd;
+  a.svyd += t.vyd;
+}
+
+/// Takes the terms into the extremes (same lanes).
+template <int D, class V>
+[[gnu::always_inline]] inline void add_extremes(PassLanes<V>& a, const PassTerms<V>& t) {
+  a.rmax = lanes_max(a.rmax, t.r);
+  a.rmin = lanes_min(a.rmin, t.r);
+  if constexpr (D > 0) a.smax = lanes_max(a.smax, t.s_abs);
+}
+
+/// The sums of W points (V = Lanes<W>) or one (V = double) into their accumulators.
 template <bool kFull, int D, class V>
 [[gnu::always_inline]] inline void pass_points(const PassInput& in, std::size_t i,
                                                PassLanes<V>& a) {
-  const V dx = internal::load<V>(in.x + i) - in.cx, dy = internal::load<V>(in.y + i) - in.cy;
-  const V q = dx * dx + dy * dy;
-  V r, w;
-  if constexpr (D > 0) {
-    const V s = internal::near_circle_s(q, in.k);
-    a.smax = lanes_max(a.smax, lanes_abs(s));
-    r = in.k.r0 + internal::near_circle_offset<D>(s, in.k);
-    w = internal::near_circle_inverse<D>(s, in.k);
-  } else {
-    r = lanes_sqrt(q);
-    w = 1.0 / r;
-  }
-  internal::store(in.r + i, r);
-  const V d = r - in.r0;
-  V vx = dx * w, vy = dy * w;
-  a.rmax = lanes_max(a.rmax, r);
-  a.rmin = lanes_min(a.rmin, r);
-  if constexpr (kFull) {
-    vx = vx - in.urx;
-    vy = vy - in.ury;
-    a.svxx += vx * vx;
-    a.svxy += vx * vy;
-    a.svyy += vy * vy;
-  }
-  a.sdd += d * d;
-  a.sd += d;
-  a.svx += vx;
-  a.svy += vy;
-  a.svxd += vx * d;
-  a.svyd += vy * d;
+  const PassTerms<V> t = pass_terms<kFull, D, V>(in, i);
+  add_extremes<D>(a, t);
+  add_sums<kFull>(a, t);
 }
 
-template <int W, bool kFull, int D>
-[[gnu::always_inline]] inline PassSums gn_pass_body(const PassInput& input) {
-  // A local copy: the stores to in.r cannot alias it, so its constants stay in registers.
-  const PassInput in = input;
+/// The four lanes of each sum in point order, added as (l₀ + l₂) + (l₁ + l₃), the extremes
+/// over every lane, then the last points from i on one at a time, added in order.
+template <bool kFull, int D, int W, int kPackets>
+[[gnu::always_inline]] inline PassSums finish_pass(const PassInput& in, std::size_t i,
+                                                   const PassLanes<Lanes<W>> (&a)[kPackets]) {
+  static_assert(W * kPackets == kSumLanes);
   using V = Lanes<W>;
-  constexpr int kPackets = kSumLanes / W;
-  PassLanes<V> a[kPackets];
-  std::size_t i = 0;
-  for (; i + kSumLanes <= in.n; i += kSumLanes)
-    for (int p = 0; p < kPackets; ++p) pass_points<kFull, D>(in, i + p * W, a[p]);
-  // The four lanes in point order, added as (l₀ + l₂) + (l₁ + l₃).
   const auto sum = [&](V PassLanes<V>::*field) {
     double l[kSumLanes];
     for (int p = 0; p < kPackets; ++p)
       for (int j = 0; j < W; ++j) l[p * W + j] = (a[p].*field)[j];
     return (l[0] + l[2]) + (l[1] + l[3]);
   };
-  PassSums out;
-  out.sum_d = sum(&PassLanes<V>::sd);
-  out.sum_dd = sum(&PassLanes<V>::sdd);
-  out.sum_vx = sum(&PassLanes<V>::svx);
-  out.sum_vy = sum(&PassLanes<V>::svy);
-  out.sum_vxd = sum(&PassLanes<V>::svxd);
-  out.sum_vyd = sum(&PassLanes<V>::svyd);
+  PassLanes<double> t;
+  t.sd = sum(&PassLanes<V>::sd);
+  t.sdd = sum(&PassLanes<V>::sdd);
+  t.svx = sum(&PassLanes<V>::svx);
+  t.svy = sum(&PassLanes<V>::svy);
+  t.svxd = sum(&PassLanes<V>::svxd);
+  t.svyd = sum(&PassLanes<V>::svyd);
   if constexpr (kFull) {
-    out.sum_vxx = sum(&PassLanes<V>::svxx);
-    out.sum_vxy = sum(&PassLanes<V>::svxy);
-    out.sum_vyy = sum(&PassLanes<V>::svyy);
+    t.svxx = sum(&PassLanes<V>::svxx);
+    t.svxy = sum(&PassLanes<V>::svxy);
+    t.svyy = sum(&PassLanes<V>::svyy);
   }
-  out.r_max = -std::numeric_limits<double>::infinity();
-  out.r_min = std::numeric_limits<double>::infinity();
   for (int p = 0; p < kPackets; ++p)
     for (int j = 0; j < W; ++j) {
-      out.r_max = std::max(out.r_max, a[p].rmax[j]);
-      out.r_min = std::min(out.r_min, a[p].rmin[j]);
-      out.s_max = std::max(out.s_max, a[p].smax[j]);
+      t.rmax = std::max(t.rmax, a[p].rmax[j]);
+      t.rmin = std::min(t.rmin, a[p].rmin[j]);
+      t.smax = std::max(t.smax, a[p].smax[j]);
     }
-  // The last n mod 4 points, one at a time, added in order.
-  for (; i < in.n; ++i) {
-    PassLanes<double> t;
-    pass_points<kFull, D>(in, i, t);
-    out.sum_d += t.sd;
-    out.sum_dd += t.sdd;
-    out.sum_vx += t.svx;
-    out.sum_vy += t.svy;
-    out.sum_vxd += t.svxd;
-    out.sum_vyd += t.svyd;
-    out.sum_vxx += t.svxx;
-    out.sum_vxy += t.svxy;
-    out.sum_vyy += t.svyy;
-    out.r_max = std::max(out.r_max, t.rmax);
-    out.r_min = std::min(out.r_min, t.rmin);
-    out.s_max = std::max(out.s_max, t.smax);
-  }
-  return out;
+  for (; i < in.n; ++i) pass_points<kFull, D>(in, i, t);
+  return {t.sd, t.sdd, t.svx, t.svy, t.svxd, t.svyd, t.svxx, t.svxy, t.svyy, t.rmax, t.rmin, t.smax};
+}
+
+template <int W, bool kFull, int D>
+[[gnu::always_inline]] inline PassSums gn_pass_body(const PassInput& input) {
+  // A local copy: the stores to in.r cannot alias it, so its constants stay in registers.
+  const PassInput in = input;
+  constexpr int kPackets = kSumLanes / W;
+  PassLanes<Lanes<W>> a[kPackets];
+  std::size_t i = 0;
+  for (; i + kSumLanes <= in.n; i += kSumLanes)
+    for (int p = 0; p < kPackets; ++p) pass_points<kFull, D>(in, i + p * W, a[p]);
+  return finish_pass<kFull, D, W, kPackets>(in, i, a);
 }
 
 template <bool kFull, int D>
@@ -369,11 +428,65 @@ template <bool kFull, int D>
 __attribute__((target("avx2"))) PassSums gn_pass_avx2(const PassInput& in) {
   return gn_pass_body<4, kFull, D>(in);
 }
+
+/// The AVX-512 variant: the terms of 8 points in one vector, added to the four-lane sums as
+/// its low half, then its high half — the points i..i+3, then i+4..i+7, into lanes 0..3: the
+/// additions of the AVX2 variant in its order, so the same bits. Two sums share an 8-lane
+/// accumulator (lanes 0..3 the one, 4..7 the other): one shuffle and one addition per half for
+/// both. Then 4 points more if n mod 8 ≥ 4, and the tail as there. (The extremes are
+/// order-free: 8 lanes.)
+template <bool kFull, int D>
+__attribute__((target("avx512f"))) PassSums gn_pass_avx512(const PassInput& input) {
+  const PassInput in = input;
+  using V8 = Lanes<8>;
+  using V4 = Lanes<4>;
+  using internal::high_halves;
+  using internal::low_halves;
+  V8 d_dd{}, vx_vy{}, vxd_vyd{}, vxx_vyy{};
+  V4 vxy{};
+  PassLanes<V8> e;  // the extremes only
+  std::size_t i = 0;
+  for (; i + 8 <= in.n; i += 8) {
+    const PassTerms<V8> t = pass_terms<kFull, D, V8>(in, i);
+    add_extremes<D>(e, t);
+    if constexpr (kFull) {
+      vxx_vyy += low_halves(t.vxx, t.vyy);
+      vxx_vyy += high_halves(t.vxx, t.vyy);
+      vxy += internal::low_half(t.vxy);
+      vxy += internal::high_half(t.vxy);
+    }
+    d_dd += low_halves(t.d, t.dd);
+    d_dd += high_halves(t.d, t.dd);
+    vx_vy += low_halves(t.vx, t.vy);
+    vx_vy += high_halves(t.vx, t.vy);
+    vxd_vyd += low_halves(t.vxd, t.vyd);
+    vxd_vyd += high_halves(t.vxd, t.vyd);
+  }
+  PassLanes<V4> a[1];
+  a[0].sd = internal::low_half(d_dd);
+  a[0].sdd = internal::high_half(d_dd);
+  a[0].svx = internal::low_half(vx_vy);
+  a[0].svy = internal::high_half(vx_vy);
+  a[0].svxd = internal::low_half(vxd_vyd);
+  a[0].svyd = internal::high_half(vxd_vyd);
+  a[0].svxx = internal::low_half(vxx_vyy);
+  a[0].svyy = internal::high_half(vxx_vyy);
+  a[0].svxy = vxy;
+  a[0].rmax = lanes_max(internal::low_half(e.rmax), internal::high_half(e.rmax));
+  a[0].rmin = lanes_min(internal::low_half(e.rmin), internal::high_half(e.rmin));
+  a[0].smax = lanes_max(internal::low_half(e.smax), internal::high_half(e.smax));
+  if (i + 4 <= in.n) {
+    pass_points<kFull, D>(in, i, a[0]);
+    i += 4;
+  }
+  return finish_pass<kFull, D, 4, 1>(in, i, a);
+}
 #endif
 
 template <bool kFull, int D>
 PassSums gn_pass_variant(const PassInput& in) {
 #if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return gn_pass_avx512<kFull, D>(in);
   if (internal::use_avx2()) return gn_pass_avx2<kFull, D>(in);
 #endif
   return gn_pass_baseline<kFull, D>(in);
@@ -389,6 +502,254 @@ PassSums gn_pass(const PassInput& in, int degree) {
     default: return gn_pass_variant<kFull, 0>(in);
   }
 }
+
+// ---- two-lane sums in AVX-512 registers ------------------------------------------------------
+// Sums kept in two lanes (lane 0 the even points, lane 1 the odd ones, each in point order) are
+// latency-bound: one addition per two points and sum. The AVX-512 variants below keep four
+// such sums side by side in an 8-lane accumulator, [s₀ | s₁ | s₂ | s₃], and add the four
+// 2-point packets of a block of 8 points in order: the additions of the 2-lane code in its
+// order (the same bits), a quarter of the additions.
+
+/// [a | b | c | d] from four 2-lane sums.
+[[gnu::always_inline]] inline Lanes<8> join_packets(const Lanes<2>& a, const Lanes<2>& b,
+                                                    const Lanes<2>& c, const Lanes<2>& d) {
+  const Lanes<4> ab = __builtin_shufflevector(a, b, 0, 1, 2, 3);
+  const Lanes<4> cd = __builtin_shufflevector(c, d, 0, 1, 2, 3);
+  return __builtin_shufflevector(ab, cd, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+
+/// The 2-lane packet k (lanes 2k, 2k + 1) of v.
+[[gnu::always_inline]] inline Lanes<2> part(const Lanes<8>& v, int k) {
+  return k == 0   ? Lanes<2>(__builtin_shufflevector(v, v, 0, 1))
+         : k == 1 ? Lanes<2>(__builtin_shufflevector(v, v, 2, 3))
+         : k == 2 ? Lanes<2>(__builtin_shufflevector(v, v, 4, 5))
+                  : Lanes<2>(__builtin_shufflevector(v, v, 6, 7));
+}
+
+/// The eight 2-lane sums [a | b | c | d] and [e | f | g | h] back into *sums[k] (k = 0..7;
+/// a null pointer drops its sum).
+[[gnu::always_inline]] inline void split_packets(const Lanes<8>& acc_a, const Lanes<8>& acc_b,
+                                                 Lanes<2>* const (&sums)[8]) {
+  for (int k = 0; k < 8; ++k)
+    if (sums[k]) *sums[k] = part(k < 4 ? acc_a : acc_b, k % 4);
+}
+
+/// acc_a += packets k = 0..3 of [a | b | c | d], acc_b of [e | f | g | h], in order k: the
+/// per-point terms of 8 sums over 8 points (a 4 × 4 transpose of 2-lane packets each).
+[[gnu::always_inline]] inline void add_packets(Lanes<8>& acc_a, Lanes<8>& acc_b,
+                                               const Lanes<8>& a, const Lanes<8>& b,
+                                               const Lanes<8>& c, const Lanes<8>& d,
+                                               const Lanes<8>& e, const Lanes<8>& f,
+                                               const Lanes<8>& g, const Lanes<8>& h) {
+  // [a₀ b₀ a₁ b₁] and [a₂ b₂ a₃ b₃] (2-lane packets), the same for c, d and so on.
+  const Lanes<8> ab_lo = __builtin_shufflevector(a, b, 0, 1, 8, 9, 2, 3, 10, 11);
+  const Lanes<8> ab_hi = __builtin_shufflevector(a, b, 4, 5, 12, 13, 6, 7, 14, 15);
+  const Lanes<8> cd_lo = __builtin_shufflevector(c, d, 0, 1, 8, 9, 2, 3, 10, 11);
+  const Lanes<8> cd_hi = __builtin_shufflevector(c, d, 4, 5, 12, 13, 6, 7, 14, 15);
+  const Lanes<8> ef_lo = __builtin_shufflevector(e, f, 0, 1, 8, 9, 2, 3, 10, 11);
+  const Lanes<8> ef_hi = __builtin_shufflevector(e, f, 4, 5, 12, 13, 6, 7, 14, 15);
+  const Lanes<8> gh_lo = __builtin_shufflevector(g, h, 0, 1, 8, 9, 2, 3, 10, 11);
+  const Lanes<8> gh_hi = __builtin_shufflevector(g, h, 4, 5, 12, 13, 6, 7, 14, 15);
+  acc_a += __builtin_shufflevector(ab_lo, cd_lo, 0, 1, 2, 3, 8, 9, 10, 11);
+  acc_b += __builtin_shufflevector(ef_lo, gh_lo, 0, 1, 2, 3, 8, 9, 10, 11);
+  acc_a += __builtin_shufflevector(ab_lo, cd_lo, 4, 5, 6, 7, 12, 13, 14, 15);
+  acc_b += __builtin_shufflevector(ef_lo, gh_lo, 4, 5, 6, 7, 12, 13, 14, 15);
+  acc_a += __builtin_shufflevector(ab_hi, cd_hi, 0, 1, 2, 3, 8, 9, 10, 11);
+  acc_b += __builtin_shufflevector(ef_hi, gh_hi, 0, 1, 2, 3, 8, 9, 10, 11);
+  acc_a += __builtin_shufflevector(ab_hi, cd_hi, 4, 5, 6, 7, 12, 13, 14, 15);
+  acc_b += __builtin_shufflevector(ef_hi, gh_hi, 4, 5, 6, 7, 12, 13, 14, 15);
+}
+
+// ---- the load pass ---------------------------------------------------------------------------
+// One pass over the input points (x, y pairs): the local coordinates p_i − p₀ into the
+// workspace, the extent of the raw coordinates and the moments of the Kåsa start, each moment
+// a two-lane sum (lane 0 the even points, lane 1 the odd ones, each in point order; the lanes
+// are added at the end) — the order of the original SSE2 pass, kept by every variant below, so
+// the start circle has the same bits whichever runs.
+
+/// The two-lane moments and, per coordinate (lane 0 x, lane 1 y), the extremes.
+struct LoadSums {
+  Lanes<2> sx{}, sy{}, sxx{}, syy{}, sxy{}, sxz{}, syz{};
+  Lanes<2> lo, hi;
+};
+
+/// Points i and i + 1 (p: the points as x, y pairs).
+[[gnu::always_inline]] inline void load_pair(const double* p, std::size_t i, Point2 shift,
+                                             double* xs, double* ys, LoadSums& m) {
+  const Lanes<2> a = internal::load<Lanes<2>>(p + 2 * i);
+  const Lanes<2> b = internal::load<Lanes<2>>(p + 2 * i + 2);
+  m.lo = lanes_min(m.lo, lanes_min(a, b));
+  m.hi = lanes_max(m.hi, lanes_max(a, b));
+  const Lanes<2> x = __builtin_shufflevector(a, b, 0, 2) - shift.x;
+  const Lanes<2> y = __builtin_shufflevector(a, b, 1, 3) - shift.y;
+  internal::store(xs + i, x);
+  internal::store(ys + i, y);
+  const Lanes<2> xx = x * x, yy = y * y;
+  const Lanes<2> z = xx + yy;
+  m.sx += x;
+  m.sy += y;
+  m.sxx += xx;
+  m.syy += yy;
+  m.sxy += x * y;
+  m.sxz += x * z;
+  m.syz += y * z;
+}
+
+#if VCMM_GEOMETRY_X86
+/// The load pass on blocks of 8 points from 0 while they fit below `packed`; returns the
+/// first point not taken. Element-wise the operations of load_pair, the moments added as
+/// there (add_packets).
+__attribute__((target("avx512f"))) std::size_t load_blocks_avx512(const double* p,
+                                                                  std::size_t packed,
+                                                                  Point2 shift, double* xs,
+                                                                  double* ys, LoadSums& m) {
+  using V8 = Lanes<8>;
+  V8 acc_a = join_packets(m.sx, m.sy, m.sxx, m.syy);         // [sx | sy | sxx | syy]
+  V8 acc_b = join_packets(m.sxy, m.sxz, m.syz, Lanes<2>{});  // [sxy | sxz | syz | 0]
+  V8 lo = join_packets(m.lo, m.lo, m.lo, m.lo), hi = join_packets(m.hi, m.hi, m.hi, m.hi);
+  std::size_t i = 0;
+  for (; i + 8 <= packed; i += 8) {
+    const V8 a = internal::load<V8>(p + 2 * i), b = internal::load<V8>(p + 2 * i + 8);
+    lo = lanes_min(lo, lanes_min(a, b));
+    hi = lanes_max(hi, lanes_max(a, b));
+    const V8 x = __builtin_shufflevector(a, b, 0, 2, 4, 6, 8, 10, 12, 14) - shift.x;
+    const V8 y = __builtin_shufflevector(a, b, 1, 3, 5, 7, 9, 11, 13, 15) - shift.y;
+    internal::store(xs + i, x);
+    internal::store(ys + i, y);
+    const V8 xx = x * x, yy = y * y;
+    const V8 z = xx + yy;
+    const V8 xy = x * y, xz = x * z, yz = y * z;
+    add_packets(acc_a, acc_b, x, y, xx, yy, xy, xz, yz, V8{});
+  }
+  split_packets(acc_a, acc_b, {&m.sx, &m.sy, &m.sxx, &m.syy, &m.sxy, &m.sxz, &m.syz, nullptr});
+  for (int k = 0; k < 4; ++k) {
+    m.lo = lanes_min(m.lo, part(lo, k));
+    m.hi = lanes_max(m.hi, part(hi, k));
+  }
+  return i;
+}
+#endif
+
+// ---- points on rays ---------------------------------------------------------------------------
+// least_squares_circle_on_rays's two passes. Pass 1: the unit directions (stored) and eight
+// sums in two lanes (as the load pass; ray_pair, ray_blocks_avx512). Pass 2: the residuals
+// (stored), their extremes and two sums in four lanes (lane j the points i ≡ j mod 4, added as
+// (l₀ + l₂) + (l₁ + l₃)) — with AVX-512 the halves of 8 points in point order, as the GN passes.
+
+struct RayInput {
+  const double* w;
+  const double* ray_x;
+  const double* ray_y;
+  const double* inv_length;
+  double* ux;
+  double* uy;
+};
+
+/// The eight sums of pass 1 (two lanes each).
+struct RaySums {
+  Lanes<2> w{}, ux{}, uy{}, uxw{}, uyw{}, uxx{}, uxy{}, uyy{};
+};
+
+/// Points i, i + 1 of pass 1.
+[[gnu::always_inline]] inline void ray_pair(const RayInput& in, std::size_t i, RaySums& m) {
+  const Lanes<2> inv = internal::load<Lanes<2>>(in.inv_length + i);
+  const Lanes<2> x = internal::load<Lanes<2>>(in.ray_x + i) * inv;
+  const Lanes<2> y = internal::load<Lanes<2>>(in.ray_y + i) * inv;
+  const Lanes<2> w = internal::load<Lanes<2>>(in.w + i);
+  internal::store(in.ux + i, x);
+  internal::store(in.uy + i, y);
+  m.w += w;
+  m.ux += x;
+  m.uy += y;
+  m.uxw += x * w;
+  m.uyw += y * w;
+  m.uxx += x * x;
+  m.uxy += x * y;
+  m.uyy += y * y;
+}
+
+/// The residual sums of pass 2 (lanes as described above, or one point: V = double).
+template <class V>
+struct ResidualLanes {
+  V max = V{} - std::numeric_limits<double>::infinity();
+  V min = V{} + std::numeric_limits<double>::infinity();
+  V e{}, ee{};
+};
+
+struct ResidualInput {
+  const double* w;
+  const double* ux;
+  const double* uy;
+  double* e;
+  double dx, dy;
+};
+
+/// The residuals of the points at i (V = Lanes<W> or double): stored, their terms returned.
+template <class V>
+[[gnu::always_inline]] inline V residuals(const ResidualInput& in, std::size_t i) {
+  const V ei = internal::load<V>(in.w + i) -
+               (internal::load<V>(in.ux + i) * in.dx + internal::load<V>(in.uy + i) * in.dy);
+  internal::store(in.e + i, ei);
+  return ei;
+}
+
+template <class V>
+[[gnu::always_inline]] inline void add_residuals(const ResidualInput& in, std::size_t i,
+                                                 ResidualLanes<V>& a) {
+  const V ei = residuals<V>(in, i);
+  a.max = lanes_max(a.max, ei);
+  a.min = lanes_min(a.min, ei);
+  a.e += ei;
+  a.ee += ei * ei;
+}
+
+#if VCMM_GEOMETRY_X86
+/// Pass 1 on blocks of 8 points from 0 while they fit below `packed`; returns the first point
+/// not taken. Element-wise the operations of ray_pair, the sums added as there (add_packets).
+__attribute__((target("avx512f"))) std::size_t ray_blocks_avx512(const RayInput& in,
+                                                                 std::size_t packed,
+                                                                 RaySums& m) {
+  using V8 = Lanes<8>;
+  V8 acc_a = join_packets(m.w, m.ux, m.uy, m.uxw);     // [w | ux | uy | uxw]
+  V8 acc_b = join_packets(m.uyw, m.uxx, m.uxy, m.uyy);  // [uyw | uxx | uxy | uyy]
+  std::size_t i = 0;
+  for (; i + 8 <= packed; i += 8) {
+    const V8 inv = internal::load<V8>(in.inv_length + i);
+    const V8 x = internal::load<V8>(in.ray_x + i) * inv;
+    const V8 y = internal::load<V8>(in.ray_y + i) * inv;
+    const V8 w = internal::load<V8>(in.w + i);
+    internal::store(in.ux + i, x);
+    internal::store(in.uy + i, y);
+    add_packets(acc_a, acc_b, w, x, y, x * w, y * w, x * x, x * y, y * y);
+  }
+  split_packets(acc_a, acc_b, {&m.w, &m.ux, &m.uy, &m.uxw, &m.uyw, &m.uxx, &m.uxy, &m.uyy});
+  return i;
+}
+
+/// Pass 2 on blocks of 8 points from 0 while they fit below `packed`, into the four lanes of
+/// a (the halves of each block in point order); returns the first point not taken.
+__attribute__((target("avx512f"))) std::size_t residual_blocks_avx512(const ResidualInput& in,
+                                                                      std::size_t packed,
+                                                                      ResidualLanes<Lanes<4>>& a) {
+  using V8 = Lanes<8>;
+  V8 e_ee = internal::concat(a.e, a.ee);  // [e | ee]
+  ResidualLanes<V8> x;  // the extremes
+  std::size_t i = 0;
+  for (; i + 8 <= packed; i += 8) {
+    const V8 ei = residuals<V8>(in, i);
+    x.max = lanes_max(x.max, ei);
+    x.min = lanes_min(x.min, ei);
+    const V8 sq = ei * ei;
+    e_ee += internal::low_halves(ei, sq);
+    e_ee += internal::high_halves(ei, sq);
+  }
+  a.e = internal::low_half(e_ee);
+  a.ee = internal::high_half(e_ee);
+  a.max = lanes_max(a.max, lanes_max(internal::low_half(x.max), internal::high_half(x.max)));
+  a.min = lanes_min(a.min, lanes_min(internal::low_half(x.min), internal::high_half(x.min)));
+  return i;
+}
+#endif
 
 /// Per-thread scratch arrays, kept between calls: reallocating ~1 MB per call at n = 36 000
 /// cost ~100 page faults and a quarter of the run time.
@@ -413,12 +774,58 @@ class Fitter {
 
   /// One pass over the input: the local coordinates p_i − p₀ into the workspace, the span
   /// check (check_span, on the raw coordinates) and the moments of the Kåsa start below.
-  /// With SSE2 two points are loaded as two packets and unpacked into an x and a y packet;
-  /// every sum is accumulated exactly as from the stored arrays (same packets, same order).
-  void load_and_kasa_start(std::span<const Point2> points, double& cx, double& cy,
-                           double& radius) {
+  /// With SSE2 two points are loaded as two packets and unpacked into an x and a y packet
+  /// (load_pair; blocks of 8 with AVX-512, load_blocks_avx512); every sum is accumulated
+  /// exactly as from the stored arrays (same packets, same order).
+  /// check_points: the checks of validate_profile(points, 3, …) beyond the count (which the
+  /// caller has made), in the same order with the same messages, the finiteness of every
+  /// coordinate decided from the moments of this pass (check_points_of below).
+  void load_and_kasa_start(std::span<const Point2> points, bool check_points, double& cx,
+                           double& cy, double& radius) {
     Packet sx = simd::pset1<Packet>(0.0), sy = sx, sxx = sx, syy = sx, sxy = sx, sxz = sx,
            syz = sx;
+#if defined(__SSE2__) && !defined(__AVX__)
+    static_assert(kLanes == 2 && sizeof(Point2) == 2 * sizeof(double));
+    const double* p = reinterpret_cast<const double*>(points.data());
+    LoadSums m;
+    m.lo = m.hi = internal::load<Lanes<2>>(p);  // per coordinate: lane 0 x, lane 1 y
+    std::size_t i = 0;
+    const auto packed = static_cast<std::size_t>(packed_);
+#if VCMM_GEOMETRY_X86
+    if (internal::use_avx512()) i = load_blocks_avx512(p, packed, shift_, x_, y_, m);
+#endif
+    for (; i < packed; i += 2) load_pair(p, i, shift_, x_, y_, m);
+    sx = m.sx;
+    sy = m.sy;
+    sxx = m.sxx;
+    syy = m.syy;
+    sxy = m.sxy;
+    sxz = m.sxz;
+    syz = m.syz;
+    Extent extent{std::min(m.lo[0], points[0].x), std::max(m.hi[0], points[0].x),
+                  std::min(m.lo[1], points[0].y), std::max(m.hi[1], points[0].y)};
+    bool finite = true;
+    for (Eigen::Index j = packed_; j < n_; ++j) {
+      const Point2 q = points[static_cast<std::size_t>(j)];
+      extent = {std::min(extent.x0, q.x), std::max(extent.x1, q.x), std::min(extent.y0, q.y),
+                std::max(extent.y1, q.y)};
+      x_[j] = q.x - shift_.x;
+      y_[j] = q.y - shift_.y;
+      finite = finite && std::isfinite(q.x) && std::isfinite(q.y);
+    }
+    if (check_points) {
+      // A coordinate that is not finite makes x² or y² of its point (p − p₀; for p₀ itself
+      // ∞ − ∞) +∞ or NaN, and a lane sum that takes one stays so: finite lane sums of x² and
+      // y² prove every packed coordinate finite. (Sums that overflow on finite data only
+      // send the search to validate_profile, which finds nothing; check_span then refuses.)
+      const Lanes<2> squares = m.sxx + m.syy;
+      if (!(finite && std::isfinite(squares[0]) && std::isfinite(squares[1])))
+        validate_profile(points, 3, kCaller);
+      internal::validate_profile_shape(points, 3, kCaller, /*require_non_collinear=*/true);
+    }
+    check_span(extent);
+#else
+    if (check_points) validate_profile(points, 3, kCaller);
     const auto accumulate = [&](Packet x, Packet y) {
       const Packet xx = simd::pmul(x, x), yy = simd::pmul(y, y);
       const Packet z = simd::padd(xx, yy);
@@ -430,38 +837,6 @@ class Fitter {
       sxz = simd::pmadd(x, z, sxz);
       syz = simd::pmadd(y, z, syz);
     };
-#if defined(__SSE2__) && !defined(__AVX__)
-    static_assert(kLanes == 2 && sizeof(Point2) == 2 * sizeof(double));
-    Extent extent{points[0].x, points[0].x, points[0].y, points[0].y};
-    {
-      const double* p = reinterpret_cast<const double*>(points.data());
-      const __m128d shift_x = _mm_set1_pd(shift_.x), shift_y = _mm_set1_pd(shift_.y);
-      __m128d lo = _mm_loadu_pd(p), hi = lo;  // per coordinate: lane 0 x, lane 1 y
-      for (Eigen::Index i = 0; i < packed_; i += 2) {
-        const __m128d a = _mm_loadu_pd(p + 2 * i), b = _mm_loadu_pd(p + 2 * i + 2);
-        lo = _mm_min_pd(lo, _mm_min_pd(a, b));
-        hi = _mm_max_pd(hi, _mm_max_pd(a, b));
-        const __m128d x = _mm_sub_pd(_mm_unpacklo_pd(a, b), shift_x);
-        const __m128d y = _mm_sub_pd(_mm_unpackhi_pd(a, b), shift_y);
-        _mm_storeu_pd(x_ + i, x);
-        _mm_storeu_pd(y_ + i, y);
-        accumulate(x, y);
-      }
-      alignas(16) double l[2], h[2];
-      _mm_store_pd(l, lo);
-      _mm_store_pd(h, hi);
-      extent = {std::min(extent.x0, l[0]), std::max(extent.x1, h[0]),
-                std::min(extent.y0, l[1]), std::max(extent.y1, h[1])};
-    }
-    for (Eigen::Index i = packed_; i < n_; ++i) {
-      const Point2 q = points[static_cast<std::size_t>(i)];
-      extent = {std::min(extent.x0, q.x), std::max(extent.x1, q.x), std::min(extent.y0, q.y),
-                std::max(extent.y1, q.y)};
-      x_[i] = q.x - shift_.x;
-      y_[i] = q.y - shift_.y;
-    }
-    check_span(extent);
-#else
     check_span(extent_of(points));
     for (std::size_t i = 0; i < points.size(); ++i) {
       x_[i] = points[i].x - shift_.x;
@@ -555,19 +930,31 @@ class Fitter {
 
 }  // namespace
 
+namespace {
+
+LeastSquaresCircle fit_circle(std::span<const Point2> points, bool check_points);
+
+}  // namespace
+
 LeastSquaresCircle least_squares_circle(std::span<const Point2> points) {
-  validate_profile(points, 3, kCaller);
-  return internal::fit_least_squares_circle(points);
+  // validate_profile(points, 3, kCaller): the count here, the rest in the fit's first pass.
+  if (points.size() < 3) validate_profile(points, 3, kCaller);
+  return fit_circle(points, /*check_points=*/true);
 }
 
-
 LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> points) {
+  return fit_circle(points, /*check_points=*/false);
+}
+
+namespace {
+
+LeastSquaresCircle fit_circle(std::span<const Point2> points, bool check_points) {
   thread_local Workspace workspace;
   Fitter fit(points, workspace);
   const double nd = static_cast<double>(fit.size());
 
   double cx = 0.0, cy = 0.0, r0 = 0.0;
-  fit.load_and_kasa_start(points, cx, cy, r0);
+  fit.load_and_kasa_start(points, check_points, cx, cy, r0);
   // Shift for the directions in M: ≈ ū ≈ (centroid − c) / R — zero for a full circle,
   // towards the arc's middle for an arc.
   const Point2 g = fit.centroid();
@@ -703,11 +1090,12 @@ LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> po
   return out;
 }
 
+}  // namespace
+
 std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
     Point2 center, double radius, const double* w, const double* ray_x, const double* ray_y,
     const double* inv_length, std::size_t count) {
-  const auto n = static_cast<Eigen::Index>(count);
-  const Eigen::Index packed = n - n % kLanes;
+  const std::size_t n = count, packed = n - n % 2;
   const double nd = static_cast<double>(n);
   thread_local Workspace ws;
   ws.x.resize(count);
@@ -716,31 +1104,23 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
   double* ux = ws.x.data();
   double* uy = ws.y.data();
   double* e = ws.r.data();
+#if VCMM_GEOMETRY_X86
+  const bool avx512 = internal::use_avx512();
+#endif
 
-  // Pass 1: unit directions (stored for pass 2) and the sums of the GN step at the centre
-  // (eight sums: one packet an iteration keeps them in registers).
-  Packet sw = simd::pset1<Packet>(0.0), sux = sw, suy = sw, suxw = sw, suyw = sw, suxx = sw,
-         suxy = sw, suyy = sw;
-  for (Eigen::Index i = 0; i < packed; i += kLanes) {
-    const Packet inv = simd::ploadu<Packet>(inv_length + i);
-    const Packet x = simd::pmul(simd::ploadu<Packet>(ray_x + i), inv);
-    const Packet y = simd::pmul(simd::ploadu<Packet>(ray_y + i), inv);
-    const Packet wi = simd::ploadu<Packet>(w + i);
-    simd::pstoreu(ux + i, x);
-    simd::pstoreu(uy + i, y);
-    sw = simd::padd(sw, wi);
-    sux = simd::padd(sux, x);
-    suy = simd::padd(suy, y);
-    suxw = simd::pmadd(x, wi, suxw);
-    suyw = simd::pmadd(y, wi, suyw);
-    suxx = simd::pmadd(x, x, suxx);
-    suxy = simd::pmadd(x, y, suxy);
-    suyy = simd::pmadd(y, y, suyy);
-  }
-  double s_w = simd::predux(sw), s_ux = simd::predux(sux), s_uy = simd::predux(suy);
-  double s_uxw = simd::predux(suxw), s_uyw = simd::predux(suyw);
-  double s_uxx = simd::predux(suxx), s_uxy = simd::predux(suxy), s_uyy = simd::predux(suyy);
-  for (Eigen::Index i = packed; i < n; ++i) {
+  // Pass 1: unit directions (stored for pass 2) and the sums of the GN step at the centre.
+  const RayInput rays{w, ray_x, ray_y, inv_length, ux, uy};
+  RaySums m;
+  std::size_t i = 0;
+#if VCMM_GEOMETRY_X86
+  if (avx512) i = ray_blocks_avx512(rays, packed, m);
+#endif
+  for (; i < packed; i += 2) ray_pair(rays, i, m);
+  double s_w = m.w[0] + m.w[1], s_ux = m.ux[0] + m.ux[1], s_uy = m.uy[0] + m.uy[1];
+  double s_uxw = m.uxw[0] + m.uxw[1], s_uyw = m.uyw[0] + m.uyw[1];
+  double s_uxx = m.uxx[0] + m.uxx[1], s_uxy = m.uxy[0] + m.uxy[1];
+  double s_uyy = m.uyy[0] + m.uyy[1];
+  for (i = packed; i < n; ++i) {
     const double x = ray_x[i] * inv_length[i], y = ray_y[i] * inv_length[i];
     ux[i] = x;
     uy[i] = y;
@@ -764,43 +1144,41 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
   const double step = std::hypot(dx, dy);
   if (!(step <= 0x1.0p-30 * radius)) return std::nullopt;
 
-  // Pass 2: residuals about R, e_i = w_i − u_i·δ (the distance from c + δ minus R); two
-  // packets an iteration into two sets of extremes and sums (halves the latency chains).
-  const Packet pdx = simd::pset1<Packet>(dx), pdy = simd::pset1<Packet>(dy);
-  struct ResidualSums {
-    Packet max = simd::pset1<Packet>(-std::numeric_limits<double>::infinity());
-    Packet min = simd::pset1<Packet>(std::numeric_limits<double>::infinity());
-    Packet e = simd::pset1<Packet>(0.0), ee = e;
-  };
-  const auto add_residuals = [&](ResidualSums& a, Eigen::Index k) {
-    const Packet ei = simd::psub(
-        simd::ploadu<Packet>(w + k),
-        simd::pmadd(simd::ploadu<Packet>(ux + k), pdx,
-                    simd::pmul(simd::ploadu<Packet>(uy + k), pdy)));
-    simd::pstoreu(e + k, ei);
-    a.max = simd::pmax(a.max, ei);
-    a.min = simd::pmin(a.min, ei);
-    a.e = simd::padd(a.e, ei);
-    a.ee = simd::pmadd(ei, ei, a.ee);
-  };
-  ResidualSums e1, e2;
-  Eigen::Index i = 0;
-  for (; i + 2 * kLanes <= packed; i += 2 * kLanes) {
-    add_residuals(e1, i);
-    add_residuals(e2, i + kLanes);
+  // Pass 2: residuals about R, e_i = w_i − u_i·δ (the distance from c + δ minus R), in four
+  // lanes: two 2-lane packets an iteration (one AVX-512 vector of 8 points), a last packet
+  // into lanes 0 and 1, the last point alone.
+  const ResidualInput res{w, ux, uy, e, dx, dy};
+  ResidualLanes<Lanes<4>> r4;
+  i = 0;
+#if VCMM_GEOMETRY_X86
+  if (avx512) i = residual_blocks_avx512(res, packed, r4);
+#endif
+  ResidualLanes<Lanes<2>> r2[2];
+  for (int h = 0; h < 2; ++h) {  // r4 as two packets
+    r2[h].max = Lanes<2>{r4.max[2 * h], r4.max[2 * h + 1]};
+    r2[h].min = Lanes<2>{r4.min[2 * h], r4.min[2 * h + 1]};
+    r2[h].e = Lanes<2>{r4.e[2 * h], r4.e[2 * h + 1]};
+    r2[h].ee = Lanes<2>{r4.ee[2 * h], r4.ee[2 * h + 1]};
   }
-  if (i < packed) add_residuals(e1, i);
-  double e_max = simd::predux_max(simd::pmax(e1.max, e2.max));
-  double e_min = simd::predux_min(simd::pmin(e1.min, e2.min));
-  double s_e = simd::predux(simd::padd(e1.e, e2.e));
-  double s_ee = simd::predux(simd::padd(e1.ee, e2.ee));
+  for (; i + 4 <= packed; i += 4) {
+    add_residuals(res, i, r2[0]);
+    add_residuals(res, i + 2, r2[1]);
+  }
+  if (i < packed) add_residuals(res, i, r2[0]);
+  const Lanes<2> lane_max = lanes_max(r2[0].max, r2[1].max);
+  const Lanes<2> lane_min = lanes_min(r2[0].min, r2[1].min);
+  const Lanes<2> lane_e = r2[0].e + r2[1].e, lane_ee = r2[0].ee + r2[1].ee;
+  double e_max = std::max(lane_max[0], lane_max[1]);
+  double e_min = std::min(lane_min[0], lane_min[1]);
+  double s_e = lane_e[0] + lane_e[1];
+  double s_ee = lane_ee[0] + lane_ee[1];
   for (i = packed; i < n; ++i) {
-    const double ei = w[i] - (ux[i] * dx + uy[i] * dy);
-    e[i] = ei;
-    e_max = std::max(e_max, ei);
-    e_min = std::min(e_min, ei);
-    s_e += ei;
-    s_ee += ei * ei;
+    ResidualLanes<double> t;
+    add_residuals(res, i, t);
+    e_max = std::max(e_max, t.max);
+    e_min = std::min(e_min, t.min);
+    s_e += t.e;
+    s_ee += t.ee;
   }
   // The exactness bound needs |δ| ≤ 2⁻³⁰ min_i (R + w_i); R + w_i ≥ R + e_min − |δ|.
   const double rho_min = radius + e_min - step;
@@ -810,7 +1188,8 @@ std::optional<LeastSquaresCircle> internal::least_squares_circle_on_rays(
   out.center = {center.x + dx, center.y + dy};
   out.radius = radius + ebar;
   out.iterations = 1;
-  out.contacts = {first_index(e, n, e_max), first_index(e, n, e_min)};
+  const auto signed_n = static_cast<Eigen::Index>(n);
+  out.contacts = {first_index(e, signed_n, e_max), first_index(e, signed_n, e_min)};
   out.ron.ront = e_max - e_min;
   out.ron.ronp = std::max(0.0, e_max - ebar);
   out.ron.ronv = std::max(0.0, ebar - e_min);

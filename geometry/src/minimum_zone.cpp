@@ -476,10 +476,8 @@ template <int W, bool kThin>
     if constexpr (W == 4) {
       acc += dev2;
     } else {
-      Sum4 half[2];
-      __builtin_memcpy(half, &dev2, sizeof half);
-      acc += half[0];
-      acc += half[1];
+      acc += internal::low_half(dev2);  // the points in order: internal/vec.h
+      acc += internal::high_half(dev2);
     }
     // Surely placed: t_in < s < t_out, i.e. max(s − t_out, t_in − s) < 0 (a difference of
     // doubles has the sign of the exact one; NaN compares false): one compare (two masks
@@ -534,7 +532,7 @@ __attribute__((target("avx2"))) void containment_avx2(bool thin, const Containme
                                                       bool& surely_outside) {
   containment_dispatch<4>(thin, m, p, lo, hi, sum, ambiguous, surely_outside);
 }
-__attribute__((target("avx512f,avx512dq,avx512vl"))) void containment_avx512(
+__attribute__((target("avx512f"))) void containment_avx512(
     bool thin, const ContainmentMap& m, const Point2* p, std::size_t lo, std::size_t hi,
     Sum4& sum, std::vector<std::size_t>& ambiguous, bool& surely_outside) {
   containment_dispatch<8>(thin, m, p, lo, hi, sum, ambiguous, surely_outside);

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "internal/prevalidated.h"
+
 namespace vcmm::geometry {
 
 void validate_profile(std::span<const Point2> points, std::size_t min_points,
@@ -31,6 +33,11 @@ void validate_profile(std::span<const Point2> points, std::size_t min_points,
       throw InvalidInput(os.str());
     }
   }
+  internal::validate_profile_shape(points, min_points, caller, require_non_collinear);
+}
+
+void internal::validate_profile_shape(std::span<const Point2> points, std::size_t min_points,
+                                      const char* caller, bool require_non_collinear) {
   if (points.empty()) return;
   // A second distinct point, then (optionally) a point off their line — exact predicates.
   std::size_t j = 1;

@@ -103,10 +103,8 @@ template <int kDegree, int W>
     if constexpr (W == 4) {
       sum += dd;
     } else {
-      V4 half[2];
-      __builtin_memcpy(half, &dd, sizeof half);
-      sum += half[0];
-      sum += half[1];
+      sum += internal::low_half(dd);  // the points in order: internal/vec.h
+      sum += internal::high_half(dd);
     }
   }
   double s_max = 0.0, r_max = -std::numeric_limits<double>::infinity();
@@ -155,7 +153,7 @@ __attribute__((target("avx2"))) bool near_sums_avx2(const Point2* p, std::size_t
   return near_sums_body<kDegree, 4>(p, n, c, reference_radius, inv_scale, k, out);
 }
 template <int kDegree>
-__attribute__((target("avx512f,avx512dq,avx512vl"))) bool near_sums_avx512(
+__attribute__((target("avx512f"))) bool near_sums_avx512(
     const Point2* p, std::size_t n, Point2 c, double reference_radius, double inv_scale,
     const internal::NearCircle& k, NearSums& out) {
   return near_sums_body<kDegree, 8>(p, n, c, reference_radius, inv_scale, k, out);

@@ -11,10 +11,13 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "../../geometry/src/internal/isa.h"
+#include "../../geometry/src/internal/least_squares_on_rays.h"
 #include "support/test_profiles.h"
 #include "vcmm/geometry/least_squares.h"
 #include "vcmm/geometry/roundness_parameters.h"
@@ -305,6 +308,7 @@ INSTANTIATE_TEST_SUITE_P(
         Regime{"SeriesEdge", 10.0, {-40, 70}, 1001, 0, 2e-3, 1e-4},
         Regime{"BeyondSeries", 10.0, {-40, 70}, 1001, 0, 6e-3, 1e-4},
         Regime{"Ring3601", 85.5, {0, 0}, 3601, 0, 1e-4, 5e-5},
+        Regime{"Ring1007", 85.5, {1, 2}, 1007, 0, 1e-4, 5e-5},  // n mod 8 = 7
         Regime{"Half", 30.0, {100, 100}, 500, kPi, 1e-3, 1e-4},
         Regime{"Quarter", 30.0, {-900, 0}, 400, kPi / 2, 1e-3, 1e-4},
         Regime{"Arc30deg", 50.0, {0, 0}, 300, kPi / 6, 1e-4, 1e-5},
@@ -314,23 +318,68 @@ INSTANTIATE_TEST_SUITE_P(
         Regime{"Sparse4Arc", 12.0, {0, 0}, 4, kPi / 2, 1e-3, 0}),
     regime_name);
 
-// The Gauss-Newton passes run as AVX2 or as baseline (SSE2) code (internal/isa.h), with their
-// sums in the same four lanes: the same bits either way.
+// The Gauss-Newton passes run as AVX-512, AVX2 or baseline (SSE2) code (internal/isa.h), with
+// their sums in the same four lanes: the same bits whichever runs (each variant the CPU lacks
+// falls back to the next narrower one).
 TEST_P(LeastSquaresRegimes, InstructionSetVariantsGiveTheSameBits) {
+  using vcmm::geometry::internal::Isa;
   const Regime g = GetParam();
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const auto pts = regime_profile(g, seed);
     const LeastSquaresCircle fit = least_squares_circle(pts);
-    LeastSquaresCircle base;
-    {
-      vcmm::geometry::internal::ForceBaselineIsa baseline;
-      base = least_squares_circle(pts);
+    for (const Isa isa : {Isa::avx2, Isa::baseline}) {
+      LeastSquaresCircle other;
+      {
+        const vcmm::geometry::internal::LimitIsa limit(isa);
+        other = least_squares_circle(pts);
+      }
+      const int v = static_cast<int>(isa);
+      EXPECT_EQ(std::memcmp(&fit.center, &other.center, sizeof fit.center), 0) << seed << v;
+      EXPECT_EQ(std::memcmp(&fit.radius, &other.radius, sizeof fit.radius), 0) << seed << v;
+      EXPECT_EQ(std::memcmp(&fit.ron, &other.ron, sizeof fit.ron), 0) << seed << v;
+      EXPECT_EQ(fit.contacts, other.contacts) << seed << v;
+      EXPECT_EQ(fit.iterations, other.iterations) << seed << v;
     }
-    EXPECT_EQ(std::memcmp(&fit.center, &base.center, sizeof fit.center), 0) << seed;
-    EXPECT_EQ(std::memcmp(&fit.radius, &base.radius, sizeof fit.radius), 0) << seed;
-    EXPECT_EQ(std::memcmp(&fit.ron, &base.ron, sizeof fit.ron), 0) << seed;
-    EXPECT_EQ(fit.contacts, base.contacts) << seed;
-    EXPECT_EQ(fit.iterations, base.iterations) << seed;
+  }
+}
+
+// The one step on rays (the filter's output, internal/least_squares_on_rays.h) runs as
+// AVX-512 or baseline code: the same bits, for every n mod 8 (blocks of 8, packets of 2, an
+// odd last point).
+TEST(LeastSquaresCircleOnRays, InstructionSetVariantsGiveTheSameBits) {
+  using vcmm::geometry::internal::Isa;
+  using vcmm::geometry::internal::least_squares_circle_on_rays;
+  std::mt19937_64 rng(20261127);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (const std::size_t n : {3, 5, 8, 9, 12, 14, 15, 1007, 3600, 3601, 3602, 3604, 3606}) {
+    // Rays from the centre, slightly off an equiangular grid and not of unit length.
+    std::vector<double> w(n), rx(n), ry(n), inv(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = 2.0 * kPi * (static_cast<double>(i) + 1e-6 * noise(rng)) /
+                       static_cast<double>(n);
+      const double len = 85.5 * (1.0 + 1e-5 * noise(rng));
+      rx[i] = len * std::cos(a);
+      ry[i] = len * std::sin(a);
+      inv[i] = 1.0 / std::hypot(rx[i], ry[i]);
+      w[i] = 1e-4 * std::cos(3.0 * a + 0.3) + 1e-9 * noise(rng);  // LS centre ≈ c
+    }
+    const Point2 c{10.0, -20.0};
+    const auto fit = least_squares_circle_on_rays(c, 85.5, w.data(), rx.data(), ry.data(),
+                                                  inv.data(), n);
+    ASSERT_TRUE(fit.has_value()) << n;
+    for (const Isa isa : {Isa::avx2, Isa::baseline}) {
+      std::optional<LeastSquaresCircle> other;
+      {
+        const vcmm::geometry::internal::LimitIsa limit(isa);
+        other = least_squares_circle_on_rays(c, 85.5, w.data(), rx.data(), ry.data(),
+                                             inv.data(), n);
+      }
+      ASSERT_TRUE(other.has_value()) << n;
+      EXPECT_EQ(std::memcmp(&fit->center, &other->center, sizeof fit->center), 0) << n;
+      EXPECT_EQ(std::memcmp(&fit->radius, &other->radius, sizeof fit->radius), 0) << n;
+      EXPECT_EQ(std::memcmp(&fit->ron, &other->ron, sizeof fit->ron), 0) << n;
+      EXPECT_EQ(fit->contacts, other->contacts) << n;
+    }
   }
 }
 
@@ -412,6 +461,41 @@ TEST(LeastSquaresCircleBadInput, TooFewPoints) {
 TEST(LeastSquaresCircleBadInput, NonFiniteCoordinate) {
   expect_invalid({{0, 0}, {1, 0}, {std::nan(""), 1}}, "point 2");
   expect_invalid({{0, 0}, {1, std::numeric_limits<double>::infinity()}, {0, 1}}, "point 1");
+}
+
+// The finiteness check runs inside the fit's first pass (from its moments): every position
+// (the AVX-512 blocks, the 2-point packets, the odd last point, the first point the others are
+// shifted by), NaN and ±∞, in x or in y, on every instruction-set variant — the same message as
+// validate_profile's, naming the point.
+TEST(LeastSquaresCircleBadInput, NonFiniteCoordinateAnywhereIsNamed) {
+  using vcmm::geometry::internal::Isa;
+  const double bad[] = {std::nan(""), std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
+  for (const std::size_t n : {std::size_t{3}, std::size_t{64}, std::size_t{101}}) {
+    const auto ring = circle_points({812.3, -555.1}, 85.5, n);
+    for (const Isa isa : {Isa::avx512, Isa::avx2, Isa::baseline}) {
+      const vcmm::geometry::internal::LimitIsa limit(isa);
+      for (std::size_t i = 0; i < n; ++i)
+        for (const double v : bad)
+          for (int coordinate = 0; coordinate < 2; ++coordinate) {
+            auto pts = ring;
+            (coordinate == 0 ? pts[i].x : pts[i].y) = v;
+            std::string expected;
+            try {
+              validate_profile(pts, 3, "least_squares_circle");
+            } catch (const InvalidInput& e) {
+              expected = e.what();
+            }
+            ASSERT_NE(expected.find("point " + std::to_string(i) + " "), std::string::npos);
+            try {
+              least_squares_circle(pts);
+              ADD_FAILURE() << "fitted with a non-finite point " << i;
+            } catch (const InvalidInput& e) {
+              EXPECT_EQ(std::string(e.what()), expected) << n << " " << i;
+            }
+          }
+    }
+  }
 }
 
 TEST(LeastSquaresCircleBadInput, CollinearOrIdentical) {

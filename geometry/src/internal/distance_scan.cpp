@@ -176,10 +176,8 @@ struct Pass {
           if constexpr (W == 4) {
             ronq_sum += dd;  // lanes: residues 0, 2, 1, 3
           } else {
-            Sum4 half[2];
-            __builtin_memcpy(half, &dd, sizeof half);
-            ronq_sum += half[0];
-            ronq_sum += half[1];
+            ronq_sum += low_half(dd);  // the points in order: internal/vec.h
+            ronq_sum += high_half(dd);
           }
         }
         if constexpr (kScaled) {
@@ -285,7 +283,7 @@ __attribute__((target("avx2"))) typename P::Out run_avx2(const Point2* p, std::s
   return P::template run<4>(p, lo, hi, c, scale, threshold, flagged, rq, ro);
 }
 template <class P>
-__attribute__((target("avx512f,avx512dq,avx512vl"))) typename P::Out run_avx512(
+__attribute__((target("avx512f"))) typename P::Out run_avx512(
     const Point2* p, std::size_t lo, std::size_t hi, Point2 c, double scale, double threshold,
     std::vector<std::size_t>* flagged, const RonqIn* rq, RonqOut* ro) {
   return P::template run<8>(p, lo, hi, c, scale, threshold, flagged, rq, ro);

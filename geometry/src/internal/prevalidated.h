@@ -17,6 +17,14 @@
 
 namespace vcmm::geometry::internal {
 
+/// The checks of validate_profile(points, min_points, caller, require_non_collinear) after
+/// the count and the finiteness of every coordinate (point.cpp): at least two distinct
+/// points, and (if asked) not all collinear, with the same messages. For a caller that
+/// establishes the count and the finiteness itself (least_squares_circle: from the moments of
+/// its first pass). Precondition (not checked): every coordinate finite.
+void validate_profile_shape(std::span<const Point2> points, std::size_t min_points,
+                            const char* caller, bool require_non_collinear);
+
 /// least_squares_circle(points) without validate_profile. Precondition (not checked): the
 /// points passed validate_profile(points, 3, …) — ≥ 3 finite points, not all collinear.
 LeastSquaresCircle fit_least_squares_circle(std::span<const Point2> points);

@@ -1,11 +1,10 @@
 // internal/vec.h — vectors of W doubles for the geometry module's explicitly vectorised
 // kernels (internal/fft.cpp, least_squares.cpp): GCC/Clang vector extensions, element-wise IEEE
 // operations, so each lane computes exactly what the scalar code computes. W = 2 in a kernel's
-// baseline variant (SSE2), 4 in its AVX2 variant, 8 in an AVX-512 one (internal/isa.h). The
-// 4- and 8-wide helpers are always inlined into the AVX2 and AVX-512 variants: no vector
-// crosses a call boundary, so GCC's note that such a return "changes the ABI" without AVX does
-// not apply (it is reported at the end of the translation unit, hence silenced for the
-// including file). Not part of the API.
+// baseline variant (SSE2), 4 in its AVX2 variant, 8 in an AVX-512 variant (internal/isa.h).
+// The 4- and 8-wide helpers are always inlined into the AVX2 and AVX-512 variants: no vector crosses a call boundary, so GCC's note that
+// such a return "changes the ABI" without AVX does not apply (it is reported at the end of the
+// translation unit, hence silenced for the including file). Not part of the API.
 #pragma once
 
 #include <type_traits>
@@ -32,10 +31,33 @@ struct VecOf<4> {
   using mask = long long __attribute__((vector_size(32)));
 };
 template <>
-struct VecOf<8> {  // AVX-512 variants only
+struct VecOf<8> {
   using type = double __attribute__((vector_size(64)));
   using mask = long long __attribute__((vector_size(64)));
 };
+
+/// The low and high four lanes of an 8-wide vector (AVX-512 variants).
+[[gnu::always_inline]] inline VecOf<4>::type low_half(const VecOf<8>::type& v) {
+  return __builtin_shufflevector(v, v, 0, 1, 2, 3);
+}
+[[gnu::always_inline]] inline VecOf<4>::type high_half(const VecOf<8>::type& v) {
+  return __builtin_shufflevector(v, v, 4, 5, 6, 7);
+}
+/// [low half of a | low half of b] and [high half of a | high half of b]: two four-lane sums
+/// kept side by side in one 8-lane accumulator take the halves of two 8-lane terms in order.
+[[gnu::always_inline]] inline VecOf<8>::type low_halves(const VecOf<8>::type& a,
+                                                        const VecOf<8>::type& b) {
+  return __builtin_shufflevector(a, b, 0, 1, 2, 3, 8, 9, 10, 11);
+}
+[[gnu::always_inline]] inline VecOf<8>::type high_halves(const VecOf<8>::type& a,
+                                                         const VecOf<8>::type& b) {
+  return __builtin_shufflevector(a, b, 4, 5, 6, 7, 12, 13, 14, 15);
+}
+/// [a | b] from two four-lane vectors.
+[[gnu::always_inline]] inline VecOf<8>::type concat(const VecOf<4>::type& a,
+                                                    const VecOf<4>::type& b) {
+  return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
+}
 
 /// T (a VecOf type, or double) from p (unaligned).
 template <class T>

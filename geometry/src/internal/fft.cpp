@@ -196,7 +196,7 @@ template <int W, class V>
   if constexpr (W == 2) {
     store(out, V(__builtin_shufflevector(a[0], a[1], 0, 2)));
     store(out + stride, V(__builtin_shufflevector(a[0], a[1], 1, 3)));
-  } else {
+  } else if constexpr (W == 4) {
     const V t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 2, 6);  // a0₀ a1₀ a0₂ a1₂
     const V t1 = __builtin_shufflevector(a[0], a[1], 1, 5, 3, 7);
     const V t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 2, 6);
@@ -205,6 +205,41 @@ template <int W, class V>
     store(out + stride, V(__builtin_shufflevector(t1, t3, 0, 1, 4, 5)));
     store(out + 2 * stride, V(__builtin_shufflevector(t0, t2, 2, 3, 6, 7)));
     store(out + 3 * stride, V(__builtin_shufflevector(t1, t3, 2, 3, 6, 7)));
+  } else {
+    static_assert(W == 8);
+    V t[8], u[8];
+    for (int k = 0; k < 8; k += 2) {  // pairs: t[k] = a_k₀ a_{k+1}₀ a_k₂ a_{k+1}₂ …
+      t[k] = __builtin_shufflevector(a[k], a[k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+      t[k + 1] = __builtin_shufflevector(a[k], a[k + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+    }
+    for (int k = 0; k < 8; k += 4) {  // quads: u[k] = lanes 0 and 4 of a_k … a_{k+3}, …
+      u[k] = __builtin_shufflevector(t[k], t[k + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+      u[k + 1] = __builtin_shufflevector(t[k + 1], t[k + 3], 0, 1, 8, 9, 4, 5, 12, 13);
+      u[k + 2] = __builtin_shufflevector(t[k], t[k + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+      u[k + 3] = __builtin_shufflevector(t[k + 1], t[k + 3], 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+    for (int l = 0; l < 4; ++l) {  // u[l]: lanes l and l + 4 of a_0 … a_3; u[l + 4]: of a_4 … a_7
+      store(out + l * stride,
+            V(__builtin_shufflevector(u[l], u[l + 4], 0, 1, 2, 3, 8, 9, 10, 11)));
+      store(out + (l + 4) * stride,
+            V(__builtin_shufflevector(u[l], u[l + 4], 4, 5, 6, 7, 12, 13, 14, 15)));
+    }
+  }
+}
+
+/// Stores a and b interleaved: out[2l] = a[l], out[2l + 1] = b[l] for l < W.
+template <int W, class V>
+[[gnu::always_inline]] inline void store_interleaved(double* out, const V& a, const V& b) {
+  if constexpr (W == 2) {
+    store(out, V(__builtin_shufflevector(a, b, 0, 2)));
+    store(out + 2, V(__builtin_shufflevector(a, b, 1, 3)));
+  } else if constexpr (W == 4) {
+    store(out, V(__builtin_shufflevector(a, b, 0, 4, 1, 5)));
+    store(out + 4, V(__builtin_shufflevector(a, b, 2, 6, 3, 7)));
+  } else {
+    static_assert(W == 8);
+    store(out, V(__builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11)));
+    store(out + 8, V(__builtin_shufflevector(a, b, 4, 12, 5, 13, 6, 14, 7, 15)));
   }
 }
 
@@ -277,6 +312,11 @@ template <std::size_t R, int W>
     std::size_t q = 0;
     for (; q + W <= s; q += W)
       general_butterfly<R, V>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
+    if constexpr (W >= 8) {
+      using V4 = typename VecOf<4>::type;
+      for (; q + 4 <= s; q += 4)
+        general_butterfly<R, V4>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
+    }
     if constexpr (W >= 4) {
       using V2 = typename VecOf<2>::type;
       for (; q + 2 <= s; q += 2)
@@ -287,7 +327,7 @@ template <std::size_t R, int W>
   }
 }
 
-/// The first pass (s = 1) for R a multiple of W (or R = 2, W = 4): W consecutive p at a time,
+/// The first pass (s = 1) for R a multiple of W (or R = 2, W ≥ 4): W consecutive p at a time,
 /// contiguous loads x[p + t m] and twiddles, the outputs y[R p + u] stored by W × W
 /// transposes; scalar for the last p.
 template <std::size_t R, int W>
@@ -322,12 +362,10 @@ template <std::size_t R, int W>
         store_transposed<W>(yr + R * p + u, R, ar + u);
         store_transposed<W>(yi + R * p + u, R, ai + u);
       }
-    } else {  // R = 2, W = 4: interleave
-      static_assert(R == 2 && W == 4);
-      store(yr + 2 * p, V(__builtin_shufflevector(ar[0], ar[1], 0, 4, 1, 5)));
-      store(yr + 2 * p + 4, V(__builtin_shufflevector(ar[0], ar[1], 2, 6, 3, 7)));
-      store(yi + 2 * p, V(__builtin_shufflevector(ai[0], ai[1], 0, 4, 1, 5)));
-      store(yi + 2 * p + 4, V(__builtin_shufflevector(ai[0], ai[1], 2, 6, 3, 7)));
+    } else {  // R = 2, W ≥ 4: interleave
+      static_assert(R == 2);
+      store_interleaved<W>(yr + 2 * p, ar[0], ar[1]);
+      store_interleaved<W>(yi + 2 * p, ai[0], ai[1]);
     }
   }
   for (; p < m; ++p) {
@@ -355,6 +393,8 @@ template <std::size_t R, int W>
   };
   std::size_t q = 0;
   for (; q + W <= s; q += W) butterfly.template operator()<V>(q);
+  if constexpr (W >= 8)
+    for (; q + 4 <= s; q += 4) butterfly.template operator()<typename VecOf<4>::type>(q);
   if constexpr (W >= 4)
     for (; q + 2 <= s; q += 2) butterfly.template operator()<typename VecOf<2>::type>(q);
   for (; q < s; ++q) butterfly.template operator()<double>(q);
@@ -368,23 +408,22 @@ template <std::size_t R, int W>
                                                          const double* __restrict xi,
                                                          std::size_t s, int first,
                                                          double* __restrict out) {
-  using V = typename VecOf<W>::type;
-  std::size_t q = 0;
-  for (; q + W <= s; q += W) {
+  const auto vectors = [&]<int VW>(std::size_t q) {  // q … q + VW − 1
+    using V = typename VecOf<VW>::type;
     V ar[R], ai[R];
     load_and_transform(xr + q, xi + q, s, ar, ai);
     for (std::size_t u = 0; u < R; ++u) {
-      const V a = first == 0 ? ar[u] : ai[u], b = first == 0 ? ai[u] : ar[u];
       double* o = out + 2 * (q + s * u);
-      if constexpr (W == 2) {
-        store(o, V(__builtin_shufflevector(a, b, 0, 2)));
-        store(o + 2, V(__builtin_shufflevector(a, b, 1, 3)));
-      } else {
-        store(o, V(__builtin_shufflevector(a, b, 0, 4, 1, 5)));
-        store(o + 4, V(__builtin_shufflevector(a, b, 2, 6, 3, 7)));
-      }
+      if (first == 0)
+        store_interleaved<VW>(o, ar[u], ai[u]);
+      else
+        store_interleaved<VW>(o, ai[u], ar[u]);
     }
-  }
+  };
+  std::size_t q = 0;
+  for (; q + W <= s; q += W) vectors.template operator()<W>(q);
+  if constexpr (W >= 8)
+    for (; q + 4 <= s; q += 4) vectors.template operator()<4>(q);
   for (; q < s; ++q) {
     double ar[R], ai[R];
     load_and_transform(xr + q, xi + q, s, ar, ai);
@@ -400,8 +439,11 @@ template <std::size_t R, int W>
                                               const double* __restrict xi,
                                               double* __restrict yr, double* __restrict yi,
                                               std::size_t s, const ComplexFft::Stage& st) {
-  if constexpr (R % W == 0 || R == 2) {
-    if (s == 1 && st.m > 1) return first_pass<R, W>(xr, xi, yr, yi, st);
+  if (s == 1 && st.m > 1) {
+    if constexpr (R % W == 0 || R == 2)
+      return first_pass<R, W>(xr, xi, yr, yi, st);
+    else if constexpr (W == 8 && R % 4 == 0)  // radix 4 in the AVX-512 variant
+      return first_pass<R, 4>(xr, xi, yr, yi, st);
   }
   strided_pass<R, W>(xr, xi, yr, yi, s, st);
 }
@@ -508,6 +550,12 @@ __attribute__((target("avx2"))) void passes_avx2(const ComplexFft::Stage* stages
                                                  int first) {
   run_stages<4>(stages, count, re, im, sr, si, interleaved, first);
 }
+
+__attribute__((target("avx512f,avx512dq,avx512vl"))) void passes_avx512(
+    const ComplexFft::Stage* stages, std::size_t count, double* re, double* im, double* sr,
+    double* si, double* interleaved, int first) {
+  run_stages<8>(stages, count, re, im, sr, si, interleaved, first);
+}
 #endif
 
 const std::vector<FftVariant>& fft_variants_on_this_cpu() {
@@ -515,6 +563,7 @@ const std::vector<FftVariant>& fft_variants_on_this_cpu() {
     std::vector<FftVariant> out = {{"baseline", passes_baseline}};
 #if VCMM_GEOMETRY_X86
     if (cpu_has_avx2()) out.push_back({"avx2", passes_avx2});
+    if (cpu_has_avx2() && cpu_has_avx512()) out.push_back({"avx512", passes_avx512});
 #endif
     return out;
   }();
@@ -572,9 +621,12 @@ ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
   }
 }
 
-ComplexFft::StagePasses ComplexFft::selected_passes() {
-  static const StagePasses widest = fft_variants().back().passes;  // chosen once
-  return use_avx2() ? widest : passes_baseline;                    // internal/isa.h
+ComplexFft::StagePasses ComplexFft::selected_passes() {  // internal/isa.h
+#if VCMM_GEOMETRY_X86
+  if (use_avx512()) return passes_avx512;
+  if (use_avx2()) return passes_avx2;
+#endif
+  return passes_baseline;
 }
 
 void ComplexFft::forward(double* re, double* im) { run(selected_passes(), re, im); }

@@ -6,9 +6,9 @@
 // smooth size ≥ 2n). Eigen's kissfft backend was measured first: 41 µs for a forward + inverse
 // real transform at n = 3600 and 0.13 s at the prime n = 3607 (its generic radix is O(p²)),
 // against a 30 µs budget (gaussian_filter.cpp). The passes are written on vectors of doubles
-// (GCC/Clang vector extensions) and compiled twice, for the package's baseline ISA and for
-// AVX2, chosen once at run time; both give the same bits (fft_variants). A plan holds its own
-// scratch: one plan per thread.
+// (GCC/Clang vector extensions) and compiled three times, for the package's baseline ISA, for
+// AVX2 and for AVX-512, the widest the CPU has chosen once at run time; all give the same bits
+// (fft_variants). A plan holds its own scratch: one plan per thread.
 #pragma once
 
 #include <algorithm>
@@ -82,10 +82,10 @@ class ComplexFft {
 };
 
 /// An instruction-set variant of the FFT's passes, compiled from the same source: "baseline"
-/// (the package's target ISA) and, on x86-64 CPUs that have it, "avx2" (4 doubles a vector;
-/// no FMA). Same operations in the same order, so the same bits on every machine
-/// (internal/isa.h; tests/geometry/fft_test.cpp); forward() uses the last (widest) one unless
-/// a ForceBaselineIsa is alive on the thread.
+/// (the package's target ISA) and, on x86-64 CPUs that have them, "avx2" (4 doubles a vector)
+/// and "avx512" (8 doubles a vector; F, DQ, VL); no FMA. Same operations in the same order, so
+/// the same bits on every machine (internal/isa.h; tests/geometry/fft_test.cpp); forward()
+/// uses the last (widest) one unless a ForceBaselineIsa is alive on the thread.
 struct FftVariant {
   std::string_view name;
   ComplexFft::StagePasses passes;

@@ -6,8 +6,10 @@
 // order on every element (reductions only over a fixed split into four lanes, one AVX2 or two
 // SSE2 vectors; no FMA: AVX2 does not enable it and the project is compiled with
 // -ffp-contract=off), so results are bit-identical whichever runs — MPI ranks on different
-// machines agree. The AVX2 variant runs where the CPU has it, unless a ForceBaselineIsa is
-// alive on the calling thread (tests compare the variants end to end). Not part of the API.
+// machines agree. Some kernels (the FFT passes, the closed filter's spectrum steps) also have
+// an AVX-512 variant (8 doubles a vector, the same element-wise operations). The widest variant
+// the CPU has runs, unless a LimitIsa (ForceBaselineIsa) is alive on the calling thread (tests
+// compare the variants end to end). Not part of the API.
 #pragma once
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -31,24 +33,57 @@ inline bool cpu_has_avx2() {
 #endif
 }
 
-inline bool& baseline_isa_forced() {
-  thread_local bool forced = false;
-  return forced;
+/// True when this CPU runs AVX-512 F, DQ and VL (checked once): the kernels that have an
+/// "avx512" variant (the FFT passes, internal/fft.cpp) take it there — 8 doubles a vector, the
+/// same element-wise operations (no FMA), so the same bits as the AVX2 and baseline variants.
+inline bool cpu_has_avx512() {
+#if VCMM_GEOMETRY_X86
+  static const bool has = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512dq") != 0 &&
+           __builtin_cpu_supports("avx512vl") != 0;
+  }();
+  return has;
+#else
+  return false;
+#endif
+}
+
+/// The instruction sets a thread's kernels may use, narrowest first.
+enum class IsaLevel { baseline = 0, avx2 = 1, avx512 = 2 };
+
+/// The widest level the kernels called on this thread may take (LimitIsa lowers it).
+inline IsaLevel& isa_ceiling() {
+  thread_local IsaLevel ceiling = IsaLevel::avx512;
+  return ceiling;
 }
 
 /// Whether the kernels called now on this thread take their AVX2 variant.
-inline bool use_avx2() { return cpu_has_avx2() && !baseline_isa_forced(); }
+inline bool use_avx2() { return cpu_has_avx2() && isa_ceiling() >= IsaLevel::avx2; }
+/// Whether the kernels called now on this thread that have an AVX-512 variant take it.
+inline bool use_avx512() {
+  return cpu_has_avx2() && cpu_has_avx512() && isa_ceiling() >= IsaLevel::avx512;
+}
 
-/// While alive, the kernels on this thread take their baseline variant.
-class ForceBaselineIsa {
+/// While alive, the kernels on this thread take no variant wider than `ceiling` (tests run
+/// every variant end to end and compare the bits).
+class LimitIsa {
  public:
-  ForceBaselineIsa() : previous_(baseline_isa_forced()) { baseline_isa_forced() = true; }
-  ~ForceBaselineIsa() { baseline_isa_forced() = previous_; }
-  ForceBaselineIsa(const ForceBaselineIsa&) = delete;
-  ForceBaselineIsa& operator=(const ForceBaselineIsa&) = delete;
+  explicit LimitIsa(IsaLevel ceiling) : previous_(isa_ceiling()) {
+    if (ceiling < previous_) isa_ceiling() = ceiling;
+  }
+  ~LimitIsa() { isa_ceiling() = previous_; }
+  LimitIsa(const LimitIsa&) = delete;
+  LimitIsa& operator=(const LimitIsa&) = delete;
 
  private:
-  bool previous_;
+  IsaLevel previous_;
+};
+
+/// While alive, the kernels on this thread take their baseline variant.
+class ForceBaselineIsa : public LimitIsa {
+ public:
+  ForceBaselineIsa() : LimitIsa(IsaLevel::baseline) {}
 };
 
 }  // namespace vcmm::geometry::internal

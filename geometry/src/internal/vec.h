@@ -1,10 +1,11 @@
 // internal/vec.h — vectors of W doubles for the geometry module's explicitly vectorised
 // kernels (internal/fft.cpp, least_squares.cpp): GCC/Clang vector extensions, element-wise IEEE
 // operations, so each lane computes exactly what the scalar code computes. W = 2 in a kernel's
-// baseline variant (SSE2), 4 in its AVX2 variant (internal/isa.h). The 4-wide helpers are
-// always inlined into the AVX2 variants: no vector crosses a call boundary, so GCC's note that
-// such a return "changes the ABI" without AVX does not apply (it is reported at the end of the
-// translation unit, hence silenced for the including file). Not part of the API.
+// baseline variant (SSE2), 4 in its AVX2 variant, 8 in an AVX-512 one (internal/isa.h). The
+// 4- and 8-wide helpers are always inlined into the AVX2 and AVX-512 variants: no vector
+// crosses a call boundary, so GCC's note that such a return "changes the ABI" without AVX does
+// not apply (it is reported at the end of the translation unit, hence silenced for the
+// including file). Not part of the API.
 #pragma once
 
 #include <type_traits>
@@ -29,6 +30,11 @@ template <>
 struct VecOf<4> {
   using type = double __attribute__((vector_size(32)));
   using mask = long long __attribute__((vector_size(32)));
+};
+template <>
+struct VecOf<8> {  // AVX-512 variants only
+  using type = double __attribute__((vector_size(64)));
+  using mask = long long __attribute__((vector_size(64)));
 };
 
 /// T (a VecOf type, or double) from p (unaligned).

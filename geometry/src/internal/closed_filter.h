@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "internal/fft.h"
+#include "internal/aligned.h"
 
 namespace vcmm::geometry::internal {
 
@@ -35,7 +36,7 @@ class ClosedFilterPlan {
   std::size_t n_;
   bool even_;
   ComplexFft fft_;
-  std::vector<double> re_, im_;
+  AlignedDoubles re_, im_;
   std::vector<Cx> half_roots_;               // ω_n^k, k ≤ n/4 (even n)
   std::vector<double> roots_re_, roots_im_;  // the same, split
   double cutoff_ = std::numeric_limits<double>::quiet_NaN();

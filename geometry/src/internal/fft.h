@@ -17,6 +17,8 @@
 #include <string_view>
 #include <vector>
 
+#include "aligned.h"  // (relative: benchmarks and tests include this header by path)
+
 namespace vcmm::geometry::internal {
 
 // ---- complex arithmetic without the NaN-recovery path of std::complex multiplication ----------
@@ -75,10 +77,10 @@ class ComplexFft {
 
   std::size_t n_;
   std::vector<Stage> stages_;
-  std::vector<double> scratch_re_, scratch_im_;
+  AlignedDoubles scratch_re_, scratch_im_;
   std::unique_ptr<ComplexFft> conv_;  // Bluestein only
   std::vector<Cx> chirp_, chirp_hat_;
-  std::vector<double> work_re_, work_im_;
+  AlignedDoubles work_re_, work_im_;
 };
 
 /// An instruction-set variant of the FFT's passes, compiled from the same source: "baseline"

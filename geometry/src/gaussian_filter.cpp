@@ -77,6 +77,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <new>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -85,12 +86,14 @@
 
 #include "vcmm/geometry/least_squares.h"
 
+#include "internal/aligned.h"
 #include "internal/closed_filter.h"
 #include "internal/fft.h"
 #include "internal/isa.h"
 #include "internal/least_squares_on_rays.h"
 #include "internal/near_circle.h"
 #include "internal/prevalidated.h"
+#include "internal/vec.h"
 
 namespace vcmm::geometry {
 namespace {
@@ -198,14 +201,30 @@ std::vector<double> filter_nonuniform(const std::vector<double>& angle,
 /// the sines of the grid displacements and two scratch arrays. One per thread, kept between
 /// calls: reallocating them per call cost ~10 page faults per array at n = 36 000.
 struct Rays {
-  Eigen::ArrayXd x, y, r, inv_r;
-  Eigen::ArrayXd deviation, filtered, sin_delta, scratch, scratch2;
+  using Array = Eigen::Map<Eigen::ArrayXd, Eigen::Aligned64>;
+  Array x{nullptr, 0}, y{nullptr, 0}, r{nullptr, 0}, inv_r{nullptr, 0};
+  Array deviation{nullptr, 0}, filtered{nullptr, 0}, sin_delta{nullptr, 0};
+  Array scratch{nullptr, 0}, scratch2{nullptr, 0};
 
+  /// Each array n long, starting on a cache line (internal/aligned.h: the vectorised passes
+  /// and the FFT read and write them 8 doubles at a time); storage kept when n shrinks.
   void resize(Eigen::Index n) {
-    for (Eigen::ArrayXd* a : {&x, &y, &r, &inv_r, &deviation, &filtered, &sin_delta, &scratch,
-                              &scratch2})
-      a->resize(n);
+    if (n == size_) return;
+    const Eigen::Index stride = (n + 7) / 8 * 8;
+    if (static_cast<std::size_t>(9 * stride) > storage_.size())
+      storage_.resize(static_cast<std::size_t>(9 * stride));
+    double* p = storage_.data();
+    for (Array* a : {&x, &y, &r, &inv_r, &deviation, &filtered, &sin_delta, &scratch,
+                     &scratch2}) {
+      new (a) Array(p, n);  // re-seating a Map: Eigen's documented placement new
+      p += stride;
+    }
+    size_ = n;
   }
+
+ private:
+  internal::AlignedDoubles storage_;
+  Eigen::Index size_ = -1;
 };
 
 /// cos(2πj/count), sin(2πj/count) for j < count, cached per thread for the last two sizes
@@ -232,12 +251,117 @@ const GridTable& grid_table(Eigen::Index count) {
   return t;
 }
 
+// ---- the grid check's maxima, vectorised per instruction set ---------------------------------
+// Maxima and minima of finite values are exact whatever the grouping, so the 2-, 4- and 8-wide
+// variants (internal/isa.h) give the same values (a zero's sign aside, which only enters as a
+// difference with itself).
+
+/// The largest |a_j|, j < count (count ≥ 1, finite values).
+template <int W>
+[[gnu::always_inline]] inline double max_abs_body(const double* a, Eigen::Index count) {
+  using V = typename internal::VecOf<W>::type;
+  using M = typename internal::VecOf<W>::mask;
+  const auto abs = [](V x) { return V(M(x) & (M{} + 0x7fffffffffffffffLL)); };  // sign cleared
+  double out = std::fabs(a[0]);
+  Eigen::Index j = 0;
+  if (count >= W) {
+    V m = abs(internal::load<V>(a));
+    for (j = W; j + W <= count; j += W) {
+      const V x = abs(internal::load<V>(a + j));
+      m = m > x ? m : x;
+    }
+    for (int l = 0; l < W; ++l) out = std::max(out, m[l]);
+  }
+  for (; j < count; ++j) out = std::max(out, std::fabs(a[j]));
+  return out;
+}
+
+/// Stage 1 of grid_error_is_negligible (see there): max_j |D_j|·max(|s_j|, |s_{j+1}|) with
+/// D_j = w_{j+1} − w_j (cyclic), and the extremes of w.
+struct GridSlopeBound {
+  double worst, w_max, w_min;
+};
+template <int W>
+[[gnu::always_inline]] inline GridSlopeBound grid_slope_bound_body(const double* w,
+                                                                   const double* sd,
+                                                                   Eigen::Index count) {
+  using V = typename internal::VecOf<W>::type;
+  using M = typename internal::VecOf<W>::mask;
+  const auto abs = [](V x) { return V(M(x) & (M{} + 0x7fffffffffffffffLL)); };
+  const auto vmax = [](V a, V b) { return a > b ? a : b; };
+  const auto vmin = [](V a, V b) { return a < b ? a : b; };
+  double worst = 0.0, w_max = w[count - 1], w_min = w[count - 1];
+  const Eigen::Index pairs = count - 1;  // D_j for j < count − 1, then the wrap
+  const Eigen::Index packed = pairs - pairs % W;
+  V pworst = V{} + 0.0, pmax = V{} + w[0], pmin = pmax;
+  for (Eigen::Index j = 0; j < packed; j += W) {
+    const V wj = internal::load<V>(w + j);
+    const V d = abs(internal::load<V>(w + j + 1) - wj);
+    const V s0 = abs(internal::load<V>(sd + j));
+    const V s1 = abs(internal::load<V>(sd + j + 1));
+    pworst = vmax(pworst, vmax(d * s0, d * s1));
+    pmax = vmax(pmax, wj);
+    pmin = vmin(pmin, wj);
+  }
+  for (int l = 0; l < W; ++l) {
+    worst = std::max(worst, pworst[l]);
+    w_max = std::max(w_max, pmax[l]);
+    w_min = std::min(w_min, pmin[l]);
+  }
+  for (Eigen::Index j = packed; j < pairs; ++j) {
+    const double d = std::fabs(w[j + 1] - w[j]);
+    worst = std::max({worst, d * std::fabs(sd[j]), d * std::fabs(sd[j + 1])});
+    w_max = std::max(w_max, w[j]);
+    w_min = std::min(w_min, w[j]);
+  }
+  const double d = std::fabs(w[0] - w[count - 1]);  // the wrap: D_{count−1}
+  worst = std::max({worst, d * std::fabs(sd[count - 1]), d * std::fabs(sd[0])});
+  return {worst, w_max, w_min};
+}
+
+double max_abs_baseline(const double* a, Eigen::Index count) { return max_abs_body<2>(a, count); }
+GridSlopeBound grid_slope_bound_baseline(const double* w, const double* sd, Eigen::Index count) {
+  return grid_slope_bound_body<2>(w, sd, count);
+}
+#if VCMM_GEOMETRY_X86
+__attribute__((target("avx2"))) double max_abs_avx2(const double* a, Eigen::Index count) {
+  return max_abs_body<4>(a, count);
+}
+__attribute__((target("avx2"))) GridSlopeBound grid_slope_bound_avx2(const double* w,
+                                                                     const double* sd,
+                                                                     Eigen::Index count) {
+  return grid_slope_bound_body<4>(w, sd, count);
+}
+__attribute__((target("avx512f,avx512dq,avx512vl"))) double max_abs_avx512(const double* a,
+                                                                           Eigen::Index count) {
+  return max_abs_body<8>(a, count);
+}
+__attribute__((target("avx512f,avx512dq,avx512vl"))) GridSlopeBound grid_slope_bound_avx512(
+    const double* w, const double* sd, Eigen::Index count) {
+  return grid_slope_bound_body<8>(w, sd, count);
+}
+#endif
+double max_abs(const double* a, Eigen::Index count) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return max_abs_avx512(a, count);
+  if (internal::use_avx2()) return max_abs_avx2(a, count);
+#endif
+  return max_abs_baseline(a, count);
+}
+GridSlopeBound grid_slope_bound(const double* w, const double* sd, Eigen::Index count) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return grid_slope_bound_avx512(w, sd, count);
+  if (internal::use_avx2()) return grid_slope_bound_avx2(w, sd, count);
+#endif
+  return grid_slope_bound_baseline(w, sd, count);
+}
+
 /// The verdict on the grid displacements once sin δ_j (in v.sin_delta) is known and whether
 /// every |r_j| cos δ_j > 0: the largest |sin δ_j|, or +∞ when some ray is half a step or more
 /// off its grid position (then the samples are not in equiangular order).
 double grid_verdict(const Rays& v, Eigen::Index count, bool all_cos_positive) {
   const double step = 2 * kPi / static_cast<double>(count);
-  const double max_sin = v.sin_delta.head(count).abs().maxCoeff();
+  const double max_sin = max_abs(v.sin_delta.data(), count);
   if (!all_cos_positive || !(max_sin < std::sin(0.5 * step)))
     return std::numeric_limits<double>::infinity();
   return max_sin;
@@ -296,35 +420,7 @@ bool grid_error_is_negligible(Rays& v, Eigen::Index count, double max_sin,
   // so max_j slope_j·|s_j| = max(max_j |D_j||s_j|, max_j |D_j||s_{j+1}|). One vectorised
   // pass for these and the extremes of w (maxima are exact: the same values as separate
   // reductions), no branch per point.
-  double worst = 0.0, w_max = w[count - 1], w_min = w[count - 1];
-  {
-    namespace simd = Eigen::internal;
-    using Packet = simd::packet_traits<double>::type;
-    constexpr Eigen::Index lanes = simd::packet_traits<double>::size;
-    const Eigen::Index pairs = count - 1;  // D_j for j < count − 1, then the wrap
-    const Eigen::Index packed = pairs - pairs % lanes;
-    Packet pworst = simd::pset1<Packet>(0.0), pmax = simd::pset1<Packet>(w[0]), pmin = pmax;
-    for (Eigen::Index j = 0; j < packed; j += lanes) {
-      const Packet wj = simd::ploadu<Packet>(w + j);
-      const Packet d = simd::pabs(simd::psub(simd::ploadu<Packet>(w + j + 1), wj));
-      const Packet s0 = simd::pabs(simd::ploadu<Packet>(sd + j));
-      const Packet s1 = simd::pabs(simd::ploadu<Packet>(sd + j + 1));
-      pworst = simd::pmax(pworst, simd::pmax(simd::pmul(d, s0), simd::pmul(d, s1)));
-      pmax = simd::pmax(pmax, wj);
-      pmin = simd::pmin(pmin, wj);
-    }
-    worst = simd::predux_max(pworst);
-    w_max = std::max(w_max, simd::predux_max(pmax));
-    w_min = std::min(w_min, simd::predux_min(pmin));
-    for (Eigen::Index j = packed; j < pairs; ++j) {
-      const double d = std::fabs(w[j + 1] - w[j]);
-      worst = std::max({worst, d * std::fabs(sd[j]), d * std::fabs(sd[j + 1])});
-      w_max = std::max(w_max, w[j]);
-      w_min = std::min(w_min, w[j]);
-    }
-    const double d = std::fabs(w[0] - w[count - 1]);  // the wrap: D_{count−1}
-    worst = std::max({worst, d * std::fabs(sd[count - 1]), d * std::fabs(sd[0])});
-  }
+  const auto [worst, w_max, w_min] = grid_slope_bound(w, sd, count);
   const double range = w_max - w_min;
   const double tolerance = std::max(1e-3 * range, 1e-10);
   if (2.0 * worst * to_angle <= tolerance) return true;
@@ -448,10 +544,16 @@ __attribute__((target("avx2"))) SetupVerdict setup_pass_avx2(const SetupPass& p,
                                                              const SetupArrays& a) {
   return setup_pass_body<D>(p, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
 }
+template <int D>
+__attribute__((target("avx512f,avx512dq,avx512vl,prefer-vector-width=512"))) SetupVerdict
+setup_pass_avx512(const SetupPass& p, Eigen::Index count, const SetupArrays& a) {
+  return setup_pass_body<D>(p, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
+}
 #endif
 template <int D>
 SetupVerdict setup_pass_variant(const SetupPass& p, Eigen::Index count, const SetupArrays& a) {
 #if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return setup_pass_avx512<D>(p, count, a);
   if (internal::use_avx2()) return setup_pass_avx2<D>(p, count, a);
 #endif
   return setup_pass_baseline<D>(p, count, a);
@@ -464,6 +566,43 @@ SetupVerdict setup_pass(int degree, const SetupPass& p, Eigen::Index count,
     case 4: return setup_pass_variant<4>(p, count, a);
     default: return setup_pass_variant<6>(p, count, a);
   }
+}
+
+/// The reconstruction (file comment) in one vectorised pass: out (x, y pairs) = xy + (rx, ry)
+/// (w − d) inv, element by element.
+struct ReconstructionArrays {
+  const double *xy, *rx, *ry, *w, *d, *inv;
+  double* out;
+};
+[[gnu::always_inline]] inline void reconstruction_body(
+    std::size_t n, const double* __restrict xy, const double* __restrict rx,
+    const double* __restrict ry, const double* __restrict w, const double* __restrict d,
+    const double* __restrict inv, double* __restrict out) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = (w[i] - d[i]) * inv[i];
+    out[2 * i] = xy[2 * i] + rx[i] * t;
+    out[2 * i + 1] = xy[2 * i + 1] + ry[i] * t;
+  }
+}
+void reconstruct_baseline(const ReconstructionArrays& a, std::size_t n) {
+  reconstruction_body(n, a.xy, a.rx, a.ry, a.w, a.d, a.inv, a.out);
+}
+#if VCMM_GEOMETRY_X86
+__attribute__((target("avx2"))) void reconstruct_avx2(const ReconstructionArrays& a,
+                                                      std::size_t n) {
+  reconstruction_body(n, a.xy, a.rx, a.ry, a.w, a.d, a.inv, a.out);
+}
+__attribute__((target("avx512f,avx512dq,avx512vl,prefer-vector-width=512"))) void
+reconstruct_avx512(const ReconstructionArrays& a, std::size_t n) {
+  reconstruction_body(n, a.xy, a.rx, a.ry, a.w, a.d, a.inv, a.out);
+}
+#endif
+void reconstruct(const ReconstructionArrays& a, std::size_t n) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return reconstruct_avx512(a, n);
+  if (internal::use_avx2()) return reconstruct_avx2(a, n);
+#endif
+  reconstruct_baseline(a, n);
 }
 
 /// The filter of validated points about the circle (center, radius) (file comment), into
@@ -591,15 +730,13 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
       return;
     }
   }
-  // q_i = p_i + (p_i − c) (w_i − d_i) / r_i.
-  v.scratch = (v.filtered - v.deviation) * v.inv_r;
-  out.points.clear();  // keeps the storage; no value-initialisation of n points (~1.5 µs)
-  out.points.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto e = static_cast<Eigen::Index>(i);
-    out.points.push_back(
-        {points[i].x + v.x[e] * v.scratch[e], points[i].y + v.y[e] * v.scratch[e]});
-  }
+  // q_i = p_i + (p_i − c) (w_i − d_i) / r_i. A reused profile of n points is overwritten (no
+  // value-initialisation).
+  out.points.resize(n);
+  reconstruct({reinterpret_cast<const double*>(points.data()), v.x.data(), v.y.data(),
+               v.filtered.data(), v.deviation.data(), v.inv_r.data(),
+               reinterpret_cast<double*>(out.points.data())},
+              n);
   if (filtered_ls)
     *filtered_ls = ls ? std::move(*ls) : internal::fit_least_squares_circle(out.points);
 }

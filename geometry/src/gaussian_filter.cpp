@@ -428,10 +428,13 @@ bool grid_error_is_negligible(Rays& v, Eigen::Index count, double max_sin,
   // Stage 2: g in v.scratch, F(g) in v.scratch2.
   double* g = v.scratch.data();
   const auto at = [&](Eigen::Index j) { return w[(j % count + count) % count]; };
-  for (Eigen::Index j = 0; j < count; ++j) {
-    const double central = (8.0 * (at(j + 1) - at(j - 1)) - (at(j + 2) - at(j - 2))) / 12.0;
+  const auto g_at = [&](Eigen::Index j, double w_m2, double w_m1, double w_p1, double w_p2) {
+    const double central = (8.0 * (w_p1 - w_m1) - (w_p2 - w_m2)) / 12.0;
     g[j] = central * sd[j] * to_angle;
-  }
+  };
+  for (Eigen::Index j : {Eigen::Index{0}, Eigen::Index{1}, count - 2, count - 1})  // wrapping
+    g_at(j, at(j - 2), at(j - 1), at(j + 1), at(j + 2));
+  for (Eigen::Index j = 2; j < count - 2; ++j) g_at(j, w[j - 2], w[j - 1], w[j + 1], w[j + 2]);
   plan.apply(g, v.scratch2.data(), cutoff_upr);
   const double e_max = (v.scratch.head(count) - v.scratch2.head(count)).abs().maxCoeff();
   return e_max <= tolerance;

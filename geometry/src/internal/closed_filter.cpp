@@ -2,10 +2,10 @@
 // (internal/closed_filter.h): real FFT, transmission H(k) = 2^−(k/f_c)², inverse FFT.
 //
 // Even n = 2N runs as one complex FFT of length N (apply_even); odd n as a complex FFT of
-// length n with zero imaginary parts. The element-wise steps around the FFT (splitting the
-// input into even and odd samples, the spectrum step of each harmonic pair) are compiled per
-// instruction set like the FFT's passes (internal/isa.h): the same operations on each element,
-// no reduction, so the same bits from every variant.
+// length n with zero imaginary parts. The input's split into even and odd samples is done by
+// the FFT's first pass (forward_from_interleaved); the spectrum step of each harmonic pair is
+// compiled per instruction set like the FFT's passes (internal/isa.h): the same operations on
+// each element, no reduction, so the same bits from every variant.
 #include "internal/closed_filter.h"
 
 #include <algorithm>
@@ -16,16 +16,6 @@
 
 namespace vcmm::geometry::internal {
 namespace {
-
-/// re[j] = in[2j], im[j] = in[2j + 1] for j < m (restrict: vectorised).
-[[gnu::always_inline]] inline void deinterleave_body(const double* __restrict in,
-                                                     std::size_t m, double* __restrict re,
-                                                     double* __restrict im) {
-  for (std::size_t j = 0; j < m; ++j) {
-    re[j] = in[2 * j];
-    im[j] = in[2 * j + 1];
-  }
-}
 
 /// The step of ClosedFilterPlan::apply_even (see there) for the pairs (k, N − k), 1 ≤ k ≤
 /// `pairs` < N − k, in place on (re, im) of length N = half: the operations of the Cx code
@@ -60,18 +50,11 @@ namespace {
 
 // The variants (internal/isa.h); GCC vectorises the AVX-512 ones 8 wide only when asked to
 // prefer 512-bit vectors.
-void deinterleave_baseline(const double* in, std::size_t m, double* re, double* im) {
-  deinterleave_body(in, m, re, im);
-}
 void spectrum_pairs_baseline(std::size_t pairs, std::size_t half, double* lr, double* li,
                              const double* h, const double* wr, const double* wi) {
   spectrum_pairs_body(pairs, half, lr, li, h, wr, wi);
 }
 #if VCMM_GEOMETRY_X86
-__attribute__((target("avx2"))) void deinterleave_avx2(const double* in, std::size_t m,
-                                                       double* re, double* im) {
-  deinterleave_body(in, m, re, im);
-}
 __attribute__((target("avx2"))) void spectrum_pairs_avx2(std::size_t pairs, std::size_t half,
                                                          double* lr, double* li,
                                                          const double* h, const double* wr,
@@ -79,23 +62,11 @@ __attribute__((target("avx2"))) void spectrum_pairs_avx2(std::size_t pairs, std:
   spectrum_pairs_body(pairs, half, lr, li, h, wr, wi);
 }
 __attribute__((target("avx512f,avx512dq,avx512vl,prefer-vector-width=512"))) void
-deinterleave_avx512(const double* in, std::size_t m, double* re, double* im) {
-  deinterleave_body(in, m, re, im);
-}
-__attribute__((target("avx512f,avx512dq,avx512vl,prefer-vector-width=512"))) void
 spectrum_pairs_avx512(std::size_t pairs, std::size_t half, double* lr, double* li,
                       const double* h, const double* wr, const double* wi) {
   spectrum_pairs_body(pairs, half, lr, li, h, wr, wi);
 }
 #endif
-
-void deinterleave(const double* in, std::size_t m, double* re, double* im) {
-#if VCMM_GEOMETRY_X86
-  if (use_avx512()) return deinterleave_avx512(in, m, re, im);
-  if (use_avx2()) return deinterleave_avx2(in, m, re, im);
-#endif
-  deinterleave_baseline(in, m, re, im);
-}
 
 void spectrum_pairs(std::size_t pairs, std::size_t half, double* lr, double* li,
                     const double* h, const double* wr, const double* wi) {
@@ -155,8 +126,7 @@ void ClosedFilterPlan::set_transmission(double cutoff_upr) {
 // inverse FFT of Z'. Each pair (k, N − k) is done in place in one step.
 void ClosedFilterPlan::apply_even(const double* in, double* out) {
   const std::size_t half = n_ / 2;
-  deinterleave(in, half, re_.data(), im_.data());
-  fft_.forward(re_.data(), im_.data());
+  fft_.forward_from_interleaved(in, re_.data(), im_.data());
   // The pairs 1 ≤ k < N − k vectorised (spectrum_pairs), then k = 0 and k = N/2 here.
   const std::size_t pairs = (half - 1) / 2;
   spectrum_pairs(pairs, half, re_.data(), im_.data(), h_.data(), roots_re_.data(),

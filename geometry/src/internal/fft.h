@@ -52,6 +52,10 @@ class ComplexFft {
   /// its last pass (re and im are left as scratch): the same values, one pass less for callers
   /// that want pairs (the real transforms of even length). out: 2n doubles, not re or im.
   void inverse_interleaved(double* re, double* im, double* out);
+  /// forward() of x_j = in[2j] + i in[2j + 1] (in: 2n doubles, not re or im), the result in
+  /// (re, im): the same values, with the split into real and imaginary parts done by the first
+  /// pass's loads (radix 2, 4 or 8 first; else a split first).
+  void forward_from_interleaved(const double* in, double* re, double* im);
   /// forward() by the named instruction-set variant (fft_variants(); std::invalid_argument for
   /// another name): for tests and benchmarks — every variant gives the same bits.
   void forward_with(std::string_view variant, double* re, double* im);
@@ -62,17 +66,22 @@ class ComplexFft {
     std::vector<double> tw_re, tw_im;  // [(u − 1) m + p] = ω_L^{p u}, L = radix · m
     std::vector<Cx> roots;             // ω_radix^t, generic radices only
   };
+  /// Interleaved input or output of a run: in[2j] + i in[2j + 1] as the input (then re, im
+  /// only receive the result), out[2j + first], out[2j + 1 − first] for the result.
+  struct PassIo {
+    const double* in = nullptr;
+    double* out = nullptr;
+    int first = 0;
+  };
   /// All passes of a plan on (re, im) with scratch (sr, si): one per instruction-set variant.
   using StagePasses = void (*)(const Stage* stages, std::size_t count, double* re,
-                               double* im, double* sr, double* si, double* interleaved,
-                               int first);
+                               double* im, double* sr, double* si, const PassIo& io);
 
  private:
   static std::size_t smooth_size_at_least(std::size_t v);
   void setup_bluestein();
   static StagePasses selected_passes();
-  void run(StagePasses passes, double* re, double* im, double* interleaved = nullptr,
-           int first = 0);
+  void run(StagePasses passes, double* re, double* im, const PassIo& io);
   void bluestein(StagePasses passes, double* re, double* im);
 
   std::size_t n_;

@@ -71,6 +71,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <bit>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -251,30 +252,10 @@ const GridTable& grid_table(Eigen::Index count) {
   return t;
 }
 
-// ---- the grid check's maxima, vectorised per instruction set ---------------------------------
+// ---- the grid check's first stage, vectorised per instruction set ---------------------------
 // Maxima and minima of finite values are exact whatever the grouping, so the 2-, 4- and 8-wide
 // variants (internal/isa.h) give the same values (a zero's sign aside, which only enters as a
 // difference with itself).
-
-/// The largest |a_j|, j < count (count ≥ 1, finite values).
-template <int W>
-[[gnu::always_inline]] inline double max_abs_body(const double* a, Eigen::Index count) {
-  using V = typename internal::VecOf<W>::type;
-  using M = typename internal::VecOf<W>::mask;
-  const auto abs = [](V x) { return V(M(x) & (M{} + 0x7fffffffffffffffLL)); };  // sign cleared
-  double out = std::fabs(a[0]);
-  Eigen::Index j = 0;
-  if (count >= W) {
-    V m = abs(internal::load<V>(a));
-    for (j = W; j + W <= count; j += W) {
-      const V x = abs(internal::load<V>(a + j));
-      m = m > x ? m : x;
-    }
-    for (int l = 0; l < W; ++l) out = std::max(out, m[l]);
-  }
-  for (; j < count; ++j) out = std::max(out, std::fabs(a[j]));
-  return out;
-}
 
 /// Stage 1 of grid_error_is_negligible (see there): max_j |D_j|·max(|s_j|, |s_{j+1}|) with
 /// D_j = w_{j+1} − w_j (cyclic), and the extremes of w.
@@ -319,35 +300,20 @@ template <int W>
   return {worst, w_max, w_min};
 }
 
-double max_abs_baseline(const double* a, Eigen::Index count) { return max_abs_body<2>(a, count); }
 GridSlopeBound grid_slope_bound_baseline(const double* w, const double* sd, Eigen::Index count) {
   return grid_slope_bound_body<2>(w, sd, count);
 }
 #if VCMM_GEOMETRY_X86
-__attribute__((target("avx2"))) double max_abs_avx2(const double* a, Eigen::Index count) {
-  return max_abs_body<4>(a, count);
-}
 __attribute__((target("avx2"))) GridSlopeBound grid_slope_bound_avx2(const double* w,
                                                                      const double* sd,
                                                                      Eigen::Index count) {
   return grid_slope_bound_body<4>(w, sd, count);
-}
-__attribute__((target("avx512f,avx512dq,avx512vl"))) double max_abs_avx512(const double* a,
-                                                                           Eigen::Index count) {
-  return max_abs_body<8>(a, count);
 }
 __attribute__((target("avx512f,avx512dq,avx512vl"))) GridSlopeBound grid_slope_bound_avx512(
     const double* w, const double* sd, Eigen::Index count) {
   return grid_slope_bound_body<8>(w, sd, count);
 }
 #endif
-double max_abs(const double* a, Eigen::Index count) {
-#if VCMM_GEOMETRY_X86
-  if (internal::use_avx512()) return max_abs_avx512(a, count);
-  if (internal::use_avx2()) return max_abs_avx2(a, count);
-#endif
-  return max_abs_baseline(a, count);
-}
 GridSlopeBound grid_slope_bound(const double* w, const double* sd, Eigen::Index count) {
 #if VCMM_GEOMETRY_X86
   if (internal::use_avx512()) return grid_slope_bound_avx512(w, sd, count);
@@ -356,12 +322,11 @@ GridSlopeBound grid_slope_bound(const double* w, const double* sd, Eigen::Index 
   return grid_slope_bound_baseline(w, sd, count);
 }
 
-/// The verdict on the grid displacements once sin δ_j (in v.sin_delta) is known and whether
-/// every |r_j| cos δ_j > 0: the largest |sin δ_j|, or +∞ when some ray is half a step or more
-/// off its grid position (then the samples are not in equiangular order).
-double grid_verdict(const Rays& v, Eigen::Index count, bool all_cos_positive) {
+/// The verdict on the grid displacements of `count` rays once max |sin δ_j| is known and
+/// whether every |r_j| cos δ_j > 0: max_sin, or +∞ when some ray is half a step or more off its
+/// grid position (then the samples are not in equiangular order).
+double grid_verdict(Eigen::Index count, double max_sin, bool all_cos_positive) {
   const double step = 2 * kPi / static_cast<double>(count);
-  const double max_sin = max_abs(v.sin_delta.data(), count);
   if (!all_cos_positive || !(max_sin < std::sin(0.5 * step)))
     return std::numeric_limits<double>::infinity();
   return max_sin;
@@ -384,7 +349,8 @@ double max_grid_displacement_sine(Rays& v, Eigen::Index count) {
   const auto yr = y * c - x * sn;
   const double x0 = v.x[0] * v.inv_r[0], y0 = v.y[0] * v.inv_r[0];  // unit ray 0
   v.sin_delta.head(count) = (x0 * yr - y0 * xr) * v.inv_r.head(count);
-  return grid_verdict(v, count, (x0 * xr + y0 * yr).minCoeff() > 0.0);
+  return grid_verdict(count, v.sin_delta.head(count).abs().maxCoeff(),
+                      (x0 * xr + y0 * yr).minCoeff() > 0.0);
 }
 
 /// Accepts the FFT result w of samples whose angles are off the equiangular grid by δ_j
@@ -489,7 +455,9 @@ void check_filter_input(std::span<const Point2> points, double cutoff_upr, const
 /// reciprocal lengths and sin δ_j; distances by the series of degree D of internal/
 /// near_circle.h. Of s_j and |r_j| cos δ_j only the verdicts are needed (every |s_j| within
 /// the series' range; every cos term > 0), kept as flags (integer OR: vectorised like the rest,
-/// and exact — the same verdicts as max/min reductions).
+/// and exact — the same verdicts as max/min reductions). max |sin δ_j| likewise, as the
+/// largest bit pattern of |sin δ_j| (non-negative doubles order as their 64-bit patterns: an
+/// integer maximum, vectorised, exactly the value a floating maximum gives).
 struct SetupPass {
   internal::NearCircle k;  ///< about the filter radius R
   double cx, cy;
@@ -500,6 +468,7 @@ struct SetupPass {
 struct SetupVerdict {
   bool off_series;        ///< some |s_j| > s_max (or not a number)
   bool non_positive_cos;  ///< some |r_j| cos δ_j ≤ 0 (or not a number)
+  double max_sin;         ///< max |sin δ_j|
 };
 template <int D>
 [[gnu::always_inline]] inline SetupVerdict setup_pass_body(
@@ -510,7 +479,7 @@ template <int D>
   const internal::NearCircle k = p.k;
   const double cx = p.cx, cy = p.cy, dev0 = p.dev0, s_max = p.s_max;
   const double x0 = p.x0, y0 = p.y0, sense = p.sense;
-  std::int64_t off_series = 0, non_positive_cos = 0;
+  std::int64_t off_series = 0, non_positive_cos = 0, max_sin_bits = 0;
   for (Eigen::Index i = 0; i < count; ++i) {
     const double dx = xy[2 * i] - cx, dy = xy[2 * i + 1] - cy;
     const double s = internal::near_circle_s(dx * dx + dy * dy, k);
@@ -521,11 +490,14 @@ template <int D>
     ry[i] = dy;
     dev[i] = dev0 + internal::near_circle_offset<D>(s, k);  // (R₀ − R) + (r − R₀)
     inv[i] = inv_i;
-    sin_delta[i] = (x0 * yr - y0 * xr) * inv_i;
+    const double sd = (x0 * yr - y0 * xr) * inv_i;
+    sin_delta[i] = sd;
+    const auto bits = std::bit_cast<std::int64_t>(std::fabs(sd));
+    max_sin_bits = max_sin_bits > bits ? max_sin_bits : bits;
     off_series |= static_cast<std::int64_t>(!(std::fabs(s) <= s_max));
     non_positive_cos |= static_cast<std::int64_t>(!(x0 * xr + y0 * yr > 0.0));
   }
-  return {off_series != 0, non_positive_cos != 0};
+  return {off_series != 0, non_positive_cos != 0, std::bit_cast<double>(max_sin_bits)};
 }
 
 /// The arrays of setup_pass_body (in the order of its parameters).
@@ -639,7 +611,7 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
   // The same pass also measures the grid displacements for count = n (as
   // max_grid_displacement_sine would, from the same values): sin δ_j and |r_j| cos δ_j.
   const double cx = center.x, cy = center.y;
-  SetupVerdict verdict{true, true};
+  SetupVerdict verdict{true, true, 0.0};
   const internal::NearCircle k = internal::near_circle_about(radius);
   for (int degree = internal::near_circle_degree_for(radius, deviation_bound); degree != 0;
        degree = degree < 6 ? 6 : 0) {
@@ -689,7 +661,8 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
   bool done = false;
   if (choice == FilterPathChoice::nonuniform) {
     // the caller asked for the convolution with the true angles
-  } else if (const double s = series ? grid_verdict(v, count, !verdict.non_positive_cos)
+  } else if (const double s = series ? grid_verdict(count, verdict.max_sin,
+                                                    !verdict.non_positive_cos)
                                      : max_grid_displacement_sine(v, count);
              std::isfinite(s)) {
     ClosedFilterPlan& plan = plan_for(n);

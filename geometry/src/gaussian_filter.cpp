@@ -63,9 +63,11 @@
 // deviation and w_i its filtered value — the input point plus a small correction, so far-from-
 // origin data lose nothing beyond the final rounding. Same count and order as the input.
 //
-// FFT: internal/fft.h (mixed radix with Bluestein for large prime factors); real input of even
-// length n runs as one complex FFT of length n/2. Plans (twiddles, transmission) are cached per
-// thread for the last few sizes.
+// FFT: internal/closed_filter.h (the filter of one size: real input of even length n runs as
+// one complex FFT of length n/2) on internal/fft.h (mixed radix with Bluestein for large prime
+// factors). Plans (twiddles, transmission) are cached per thread for the last few sizes. The
+// vectorised passes here (first pass, grid check, reconstruction) have baseline, AVX2 and
+// AVX-512 variants with the same bits (internal/isa.h).
 #include "vcmm/geometry/gaussian_filter.h"
 
 #include <Eigen/Core>

@@ -6,8 +6,10 @@
 // order on every element (reductions only over a fixed split into four lanes, one AVX2 or two
 // SSE2 vectors; no FMA: AVX2 does not enable it and the project is compiled with
 // -ffp-contract=off), so results are bit-identical whichever runs — MPI ranks on different
-// machines agree. Some kernels (the FFT passes, the closed filter's spectrum steps) also have
-// an AVX-512 variant (8 doubles a vector, the same element-wise operations). The widest variant
+// machines agree. Some kernels (the FFT passes, the closed filter's spectrum step, the Gaussian
+// filter's first pass, grid check and reconstruction) also have an AVX-512 variant (8 doubles a
+// vector, the same element-wise operations; maxima, which are exact in any grouping, the only
+// reductions; AVX-512 does not contract either under -ffp-contract=off). The widest variant
 // the CPU has runs, unless a LimitIsa (ForceBaselineIsa) is alive on the calling thread (tests
 // compare the variants end to end). Not part of the API.
 #pragma once

@@ -295,6 +295,18 @@ FirstOrderKernel kernel_of(const KinematicModel& model, const Prepared& pr,
       k.arm_mask[a][static_cast<int>(chain.workpiece_side[j])] = 1.0;
     }
   }
+  // Constant arm masks give the same bits unless a stylus component is −0 (first_order_kernel.h).
+  const auto negative_zero = [](double v) { return v == 0.0 && std::signbit(v); };
+  if (!negative_zero(t[0]) && !negative_zero(t[1]) && !negative_zero(t[2])) {
+    for (const auto p : {internal::ArmPattern::moving_bridge, internal::ArmPattern::fixed_bridge}) {
+      bool same = true;
+      for (int a = 0; a < 3; ++a) {
+        for (int j = 0; j < 3; ++j)
+          same = same && k.arm_mask[a][j] == (internal::arm_mask_of(p, a, j) ? 1.0 : 0.0);
+      }
+      if (same) k.arm_pattern = p;
+    }
+  }
   k.c0y = pr.squareness[0];
   k.b0z = pr.squareness[1];
   k.a0z = pr.squareness[2];

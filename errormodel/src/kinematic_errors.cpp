@@ -676,6 +676,21 @@ void KinematicModel::set_covariance(const Eigen::MatrixXd& covariance) {
   covariance_ = covariance;
   uncertain_ = std::move(uncertain);
   cholesky_ = k > 0 ? Eigen::MatrixXd(llt.matrixL()) : Eigen::MatrixXd();
+  // draw() adds column j of L only down to its last non-zero entry. The factor of a block
+  // diagonal covariance (the default: no correlation between functions) is block diagonal,
+  // and a skipped term l·z = ±0 leaves a parameter p unchanged unless p = −0 (−0 + +0 = +0);
+  // p can be −0 only where its estimate is −0 (a sum is −0 only as −0 + −0). So with no
+  // estimate −0 the skip gives the same bits: ~k²/2 products → the blocks' (75 → ~9 each).
+  column_end_.assign(static_cast<std::size_t>(k), k);
+  bool negative_zero = false;
+  for (const Eigen::Index i : uncertain_) negative_zero |= mean_[i] == 0.0 && std::signbit(mean_[i]);
+  for (Eigen::Index j = 0; j < k && !negative_zero; ++j) {
+    Eigen::Index end = j + 1;
+    for (Eigen::Index i = j + 1; i < k; ++i) {
+      if (cholesky_(i, j) != 0.0) end = i + 1;
+    }
+    column_end_[static_cast<std::size_t>(j)] = end;
+  }
 }
 
 KinematicErrors KinematicModel::nominal() const {
@@ -703,13 +718,14 @@ void KinematicModel::draw(RandomSource& rng, KinematicErrors& out) const {
     for (Eigen::Index j = 0; j < k; ++j) {
       const double zj = z[static_cast<std::size_t>(j)];
       const double* __restrict l = cholesky_.col(j).data();
-      for (Eigen::Index i = j; i < k; ++i) p[i] += l[i] * zj;
+      const Eigen::Index end = column_end_[static_cast<std::size_t>(j)];
+      for (Eigen::Index i = j; i < end; ++i) p[i] += l[i] * zj;
     }
     return;
   }
   for (Eigen::Index j = 0; j < k; ++j) {
     const double zj = z[static_cast<std::size_t>(j)];
-    for (Eigen::Index i = j; i < k; ++i) {
+    for (Eigen::Index i = j; i < column_end_[static_cast<std::size_t>(j)]; ++i) {
       out.parameters_[uncertain_[static_cast<std::size_t>(i)]] += cholesky_(i, j) * zj;
     }
   }

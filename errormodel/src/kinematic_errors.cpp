@@ -683,7 +683,8 @@ void KinematicModel::set_covariance(const Eigen::MatrixXd& covariance) {
   // estimate −0 the skip gives the same bits: ~k²/2 products → the blocks' (75 → ~9 each).
   column_end_.assign(static_cast<std::size_t>(k), k);
   bool negative_zero = false;
-  for (const Eigen::Index i : uncertain_) negative_zero |= mean_[i] == 0.0 && std::signbit(mean_[i]);
+  for (const Eigen::Index i : uncertain_)
+    negative_zero = negative_zero || (mean_[i] == 0.0 && std::signbit(mean_[i]));
   for (Eigen::Index j = 0; j < k && !negative_zero; ++j) {
     Eigen::Index end = j + 1;
     for (Eigen::Index i = j + 1; i < k; ++i) {

@@ -73,7 +73,7 @@ FirstOrderKernel first_order_kernel(const KinematicModel& model, const Kinematic
 /// kArms ≠ data (k.arm_pattern == kArms, which holds only when no t_j is −0): the arm
 /// r_aj = t_j + M_aj q_j is t_j + q_j where M_aj = 1 (1·q = q exactly) and t_j where M_aj = 0
 /// (0·q = ±0 for finite q, and t + ±0 = t for t ≠ 0, +0 + ±0 = +0): the same bits without
-/// the 9 multiplications and with 2 additions instead of 9. (A non-finite q makes the point
+/// the 9 multiplications and with 2 or 3 additions instead of 9. (A non-finite q makes the point
 /// bad, and the caller discards every output then.)
 template <int D, bool kZ, int DR = D, ArmPattern kArms = ArmPattern::data>
   requires(0 <= DR && DR <= D)

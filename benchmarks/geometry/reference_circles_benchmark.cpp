@@ -60,7 +60,7 @@ BENCHMARK(BM_LeastSquares)->Apply(sizes);
 // 2: AVX-512; internal/isa.h — a variant the CPU lacks falls back to the next narrower one).
 void BM_LeastSquaresIsa(benchmark::State& state) {
   const auto& p = profile(static_cast<std::size_t>(state.range(0)));
-  const g::internal::LimitIsa limit(static_cast<g::internal::Isa>(state.range(1)));
+  const g::internal::LimitIsa limit(static_cast<g::internal::IsaLevel>(state.range(1)));
   for (auto _ : state) benchmark::DoNotOptimize(g::least_squares_circle(p));
 }
 BENCHMARK(BM_LeastSquaresIsa)->ArgsProduct({{3600}, {0, 1, 2}})->Unit(benchmark::kMicrosecond);
@@ -120,7 +120,7 @@ BENCHMARK(BM_GaussianFilterSharedLs)->Apply(sizes);
 void BM_FilteredLeastSquaresIsa(benchmark::State& state) {
   const auto& p = profile(static_cast<std::size_t>(state.range(0)));
   const g::LeastSquaresCircle ls = g::least_squares_circle(p);
-  const g::internal::LimitIsa limit(static_cast<g::internal::Isa>(state.range(1)));
+  const g::internal::LimitIsa limit(static_cast<g::internal::IsaLevel>(state.range(1)));
   for (auto _ : state)
     benchmark::DoNotOptimize(g::gaussian_filtered_least_squares_circle(p, 50.0, ls, true));
 }
@@ -140,7 +140,7 @@ void BM_LeastSquaresOnRaysIsa(benchmark::State& state) {
     inv.push_back(1.0 / std::hypot(x.back(), y.back()));
     w.push_back(std::hypot(x.back(), y.back()) - ls.radius);
   }
-  const g::internal::LimitIsa limit(static_cast<g::internal::Isa>(state.range(1)));
+  const g::internal::LimitIsa limit(static_cast<g::internal::IsaLevel>(state.range(1)));
   for (auto _ : state)
     benchmark::DoNotOptimize(g::internal::least_squares_circle_on_rays(
         ls.center, ls.radius, w.data(), x.data(), y.data(), inv.data(), p.size()));

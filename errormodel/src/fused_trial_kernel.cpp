@@ -9,10 +9,16 @@
 namespace vcmm::errormodel::internal {
 namespace {
 
-template <int D, bool kXyz, int DR>
+// kArms ≠ data: the planar form (FusedTrialInput::planar, R about z with r22 = 1, constant
+// arm masks: first_order_displacement), where qz = (pz + r·0)·s is pz·s and w2 = 1·qz + lz
+// is qz + lz, both exactly (pz ≠ −0; 1·x = x): 3 operations fewer a point, 19 with the arms.
+// In every form e = −v enters c as t·(−v) = (−t)·v (the product's rounding is symmetric):
+// the same bits without the 2 negations.
+template <int D, bool kXyz, int DR, ArmPattern kArms>
 [[gnu::always_inline]] inline Eigen::Index points(const FusedTrialInput& in,
                                                   const FirstOrderKernel& k,
                                                   double* __restrict out) {
+  constexpr bool kPlanar = kArms != ArmPattern::data;
   const double* __restrict px = in.px;
   const double* __restrict py = in.py;
   const double* __restrict pz = in.pz;
@@ -24,8 +30,8 @@ template <int D, bool kXyz, int DR>
   const double* __restrict z = in.noise;
   const Eigen::Matrix3d& r = in.rotation;
   const double r00 = r(0, 0), r01 = r(0, 1), r10 = r(1, 0), r11 = r(1, 1), r22 = r(2, 2);
-  // Rᵀ of a rotation about z: (x, y) → (r00 x + r10 y, r01 x + r11 y), z unchanged.
-  const double t00 = r(0, 0), t01 = r(1, 0), t10 = r(0, 1), t11 = r(1, 1), t22 = r(2, 2);
+  // −Rᵀ of a rotation about z: (x, y) → −(r00 x + r10 y, r01 x + r11 y), z unchanged.
+  const double t00 = -r(0, 0), t01 = -r(1, 0), t10 = -r(0, 1), t11 = -r(1, 1), t22 = -r(2, 2);
   const double lx = in.location.x(), ly = in.location.y(), lz = in.location.z();
   const double scale = in.scale, inverse_scale = in.inverse_scale;
   constexpr int kStride = kXyz ? 3 : 2;
@@ -34,19 +40,19 @@ template <int D, bool kXyz, int DR>
     const double t = rough[i];
     const double qx = (px[i] + t * nx[i]) * scale;
     const double qy = (py[i] + t * ny[i]) * scale;
-    const double qz = (pz[i] + t * nz[i]) * scale;
+    const double qz = kPlanar ? pz[i] * scale : (pz[i] + t * nz[i]) * scale;
     const double w0 = r00 * qx + r01 * qy + lx;
     const double w1 = r10 * qx + r11 * qy + ly;
-    const double w2 = r22 * qz + lz;
-    double ex = 0.0, ey = 0.0, ez = 0.0;
-    bad += first_order_error<D, kXyz, DR>(k, w0, w1, w2, ex, ey, ez);
+    const double w2 = kPlanar ? qz + lz : r22 * qz + lz;
+    double vx = 0.0, vy = 0.0, vz = 0.0;
+    bad += first_order_displacement<D, kXyz, DR, kArms>(k, w0, w1, w2, vx, vy, vz);
     const double sh = shift[i];
-    const double cx = t00 * ex + t01 * ey + sh * nx[i] + z[kStride * i];
-    const double cy = t10 * ex + t11 * ey + sh * ny[i] + z[kStride * i + 1];
+    const double cx = t00 * vx + t01 * vy + sh * nx[i] + z[kStride * i];
+    const double cy = t10 * vx + t11 * vy + sh * ny[i] + z[kStride * i + 1];
     out[kStride * i] = (qx + cx) * inverse_scale;
     out[kStride * i + 1] = (qy + cy) * inverse_scale;
     if constexpr (kXyz) {
-      const double cz = t22 * ez + sh * nz[i] + z[3 * i + 2];
+      const double cz = t22 * vz + sh * nz[i] + z[3 * i + 2];
       out[kStride * i + 2] = (qz + cz) * inverse_scale;
     }
   }
@@ -56,49 +62,68 @@ template <int D, bool kXyz, int DR>
 // Rotations of one degree less than the translations (the usual calibration: a rotation is
 // about the derivative of a straightness) get their own instance in the xy form, which the
 // Monte Carlo trial runs: 3 × 3 Horner steps fewer a point (first_order_error: the same bits).
-template <bool kXyz, int D>
+template <bool kXyz, int D, ArmPattern kArms>
 [[gnu::always_inline]] inline Eigen::Index degree(const FusedTrialInput& in,
                                                   const FirstOrderKernel& k, double* out) {
   if constexpr (!kXyz && D > 0) {
-    if (k.rotation_degree < D) return points<D, kXyz, D - 1>(in, k, out);
+    if (k.rotation_degree < D) return points<D, kXyz, D - 1, kArms>(in, k, out);
   }
-  return points<D, kXyz, D>(in, k, out);
+  return points<D, kXyz, D, kArms>(in, k, out);
 }
 
-template <bool kXyz>
+template <bool kXyz, ArmPattern kArms>
 [[gnu::always_inline]] inline Eigen::Index dispatch(const FusedTrialInput& in,
                                                     const FirstOrderKernel& k, double* out) {
   switch (k.degree) {
-    case 0: return degree<kXyz, 0>(in, k, out);
-    case 1: return degree<kXyz, 1>(in, k, out);
-    case 2: return degree<kXyz, 2>(in, k, out);
-    case 3: return degree<kXyz, 3>(in, k, out);
-    case 4: return degree<kXyz, 4>(in, k, out);
-    case 5: return degree<kXyz, 5>(in, k, out);
-    case 6: return degree<kXyz, 6>(in, k, out);
-    case 7: return degree<kXyz, 7>(in, k, out);
-    case 8: return degree<kXyz, 8>(in, k, out);
-    case 9: return degree<kXyz, 9>(in, k, out);
-    default: return degree<kXyz, 10>(in, k, out);
+    case 0: return degree<kXyz, 0, kArms>(in, k, out);
+    case 1: return degree<kXyz, 1, kArms>(in, k, out);
+    case 2: return degree<kXyz, 2, kArms>(in, k, out);
+    case 3: return degree<kXyz, 3, kArms>(in, k, out);
+    case 4: return degree<kXyz, 4, kArms>(in, k, out);
+    case 5: return degree<kXyz, 5, kArms>(in, k, out);
+    case 6: return degree<kXyz, 6, kArms>(in, k, out);
+    case 7: return degree<kXyz, 7, kArms>(in, k, out);
+    case 8: return degree<kXyz, 8, kArms>(in, k, out);
+    case 9: return degree<kXyz, 9, kArms>(in, k, out);
+    default: return degree<kXyz, 10, kArms>(in, k, out);
   }
 }
 static_assert(max_legendre_degree == 10, "extend dispatch");
 
 VCMM_SIMD_CLONES Eigen::Index points_xy(const FusedTrialInput& in, const FirstOrderKernel& k,
                                         double* out) {
-  return dispatch<false>(in, k, out);
+  return dispatch<false, ArmPattern::data>(in, k, out);
+}
+
+// The planar forms (the ring trial's): xy only, one per built-in chain.
+VCMM_SIMD_CLONES Eigen::Index points_xy_moving_bridge(const FusedTrialInput& in,
+                                                      const FirstOrderKernel& k, double* out) {
+  return dispatch<false, ArmPattern::moving_bridge>(in, k, out);
+}
+
+VCMM_SIMD_CLONES Eigen::Index points_xy_fixed_bridge(const FusedTrialInput& in,
+                                                     const FirstOrderKernel& k, double* out) {
+  return dispatch<false, ArmPattern::fixed_bridge>(in, k, out);
 }
 
 VCMM_SIMD_CLONES Eigen::Index points_xyz(const FusedTrialInput& in, const FirstOrderKernel& k,
                                          double* out) {
-  return dispatch<true>(in, k, out);
+  return dispatch<true, ArmPattern::data>(in, k, out);
 }
 
 }  // namespace
 
 Eigen::Index fused_trial_points(const FusedTrialInput& in, const FirstOrderKernel& kinematic,
                                 bool xyz, double* out) {
-  return xyz ? points_xyz(in, kinematic, out) : points_xy(in, kinematic, out);
+  if (xyz) return points_xyz(in, kinematic, out);
+  if (in.planar && in.rotation(2, 2) == 1.0) {
+    switch (kinematic.arm_pattern) {
+      case ArmPattern::moving_bridge: return points_xy_moving_bridge(in, kinematic, out);
+      case ArmPattern::fixed_bridge: return points_xy_fixed_bridge(in, kinematic, out);
+      case ArmPattern::data: break;
+    }
+  }
+  return points_xy(in, kinematic, out);
 }
 
 namespace {

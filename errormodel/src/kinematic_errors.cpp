@@ -295,6 +295,18 @@ FirstOrderKernel kernel_of(const KinematicModel& model, const Prepared& pr,
       k.arm_mask[a][static_cast<int>(chain.workpiece_side[j])] = 1.0;
     }
   }
+  // Constant arm masks give the same bits unless a stylus component is −0 (first_order_kernel.h).
+  const auto negative_zero = [](double v) { return v == 0.0 && std::signbit(v); };
+  if (!negative_zero(t[0]) && !negative_zero(t[1]) && !negative_zero(t[2])) {
+    for (const auto p : {internal::ArmPattern::moving_bridge, internal::ArmPattern::fixed_bridge}) {
+      bool same = true;
+      for (int a = 0; a < 3; ++a) {
+        for (int j = 0; j < 3; ++j)
+          same = same && k.arm_mask[a][j] == (internal::arm_mask_of(p, a, j) ? 1.0 : 0.0);
+      }
+      if (same) k.arm_pattern = p;
+    }
+  }
   k.c0y = pr.squareness[0];
   k.b0z = pr.squareness[1];
   k.a0z = pr.squareness[2];
@@ -664,6 +676,22 @@ void KinematicModel::set_covariance(const Eigen::MatrixXd& covariance) {
   covariance_ = covariance;
   uncertain_ = std::move(uncertain);
   cholesky_ = k > 0 ? Eigen::MatrixXd(llt.matrixL()) : Eigen::MatrixXd();
+  // draw() adds column j of L only down to its last non-zero entry. The factor of a block
+  // diagonal covariance (the default: no correlation between functions) is block diagonal,
+  // and a skipped term l·z = ±0 leaves a parameter p unchanged unless p = −0 (−0 + +0 = +0);
+  // p can be −0 only where its estimate is −0 (a sum is −0 only as −0 + −0). So with no
+  // estimate −0 the skip gives the same bits: ~k²/2 products → the blocks' (75 → ~9 each).
+  column_end_.assign(static_cast<std::size_t>(k), k);
+  bool negative_zero = false;
+  for (const Eigen::Index i : uncertain_)
+    negative_zero = negative_zero || (mean_[i] == 0.0 && std::signbit(mean_[i]));
+  for (Eigen::Index j = 0; j < k && !negative_zero; ++j) {
+    Eigen::Index end = j + 1;
+    for (Eigen::Index i = j + 1; i < k; ++i) {
+      if (cholesky_(i, j) != 0.0) end = i + 1;
+    }
+    column_end_[static_cast<std::size_t>(j)] = end;
+  }
 }
 
 KinematicErrors KinematicModel::nominal() const {
@@ -691,13 +719,14 @@ void KinematicModel::draw(RandomSource& rng, KinematicErrors& out) const {
     for (Eigen::Index j = 0; j < k; ++j) {
       const double zj = z[static_cast<std::size_t>(j)];
       const double* __restrict l = cholesky_.col(j).data();
-      for (Eigen::Index i = j; i < k; ++i) p[i] += l[i] * zj;
+      const Eigen::Index end = column_end_[static_cast<std::size_t>(j)];
+      for (Eigen::Index i = j; i < end; ++i) p[i] += l[i] * zj;
     }
     return;
   }
   for (Eigen::Index j = 0; j < k; ++j) {
     const double zj = z[static_cast<std::size_t>(j)];
-    for (Eigen::Index i = j; i < k; ++i) {
+    for (Eigen::Index i = j; i < column_end_[static_cast<std::size_t>(j)]; ++i) {
       out.parameters_[uncertain_[static_cast<std::size_t>(i)]] += cholesky_(i, j) * zj;
     }
   }

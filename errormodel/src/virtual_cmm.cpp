@@ -362,6 +362,7 @@ struct PreparedAccess {
   static const double* harmonic(const PreparedMeasurement& p, Eigen::Index c) {
     return p.harmonics_.col(c).data();
   }
+  static bool planar(const PreparedMeasurement& p) { return p.planar_; }
 };
 
 namespace {
@@ -475,6 +476,7 @@ bool prepared_trial(const PreparedMeasurement& pm, const DigitalModel& model,
                                  scratch.shift.data());
     internal::FusedTrialInput in;
     in.n = n;
+    in.planar = PreparedAccess::planar(pm);
     in.px = PreparedAccess::column(pm, 0);
     in.py = PreparedAccess::column(pm, 1);
     in.pz = PreparedAccess::column(pm, 2);
@@ -764,6 +766,10 @@ PreparedMeasurement::PreparedMeasurement(Measurement m, const DigitalModel& mode
   soa_.resize(n, 6);
   soa_.leftCols<3>() = measurement_.points_mm.transpose().array();
   soa_.rightCols<3>() = measurement_.normals.transpose().array();
+  // Exact tests: the fused kernel's planar form relies on pz + r·nz = pz bit for bit.
+  planar_ = (soa_.col(5) == 0.0).all() &&
+            std::none_of(soa_.col(2).data(), soa_.col(2).data() + n,
+                         [](double z) { return z == 0.0 && std::signbit(z); });
   for (const ProbeHarmonic& h : model.probe.directional)
     probe_order_ = std::max(probe_order_, h.order);
   // Re, Im (d_x + i d_y)^k by the recurrence of probe_shifts_k (the same values).

@@ -63,20 +63,24 @@
 // deviation and w_i its filtered value — the input point plus a small correction, so far-from-
 // origin data lose nothing beyond the final rounding. Same count and order as the input.
 //
-// FFT: internal/fft.h (mixed radix with Bluestein for large prime factors); real input of even
-// length n runs as one complex FFT of length n/2. Plans (twiddles, transmission) are cached per
-// thread for the last few sizes.
+// FFT: internal/closed_filter.h (the filter of one size: real input of even length n runs as
+// one complex FFT of length n/2) on internal/fft.h (mixed radix with Bluestein for large prime
+// factors). Plans (twiddles, transmission) are cached per thread for the last few sizes. The
+// vectorised passes here (first pass, grid check, reconstruction) have baseline, AVX2 and
+// AVX-512 variants with the same bits (internal/isa.h).
 #include "vcmm/geometry/gaussian_filter.h"
 
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <new>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -85,11 +89,14 @@
 
 #include "vcmm/geometry/least_squares.h"
 
+#include "internal/aligned.h"
+#include "internal/closed_filter.h"
 #include "internal/fft.h"
 #include "internal/isa.h"
 #include "internal/least_squares_on_rays.h"
 #include "internal/near_circle.h"
 #include "internal/prevalidated.h"
+#include "internal/vec.h"
 
 namespace vcmm::geometry {
 namespace {
@@ -97,155 +104,11 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kAlpha = 0.46971863934982566;  // sqrt(ln 2 / π)
 
-// Complex arithmetic and the FFT: internal/fft.h.
-using internal::ComplexFft;
-using internal::Cx;
-using internal::conj;
-using internal::times_minus_i;
-using internal::unit_root;
-
-
-// ---- the closed-profile filter of one size: real FFT + transmission -------------------------
-
-/// re[j] = in[2j], im[j] = in[2j + 1] for j < m (restrict: vectorised).
-void deinterleave(const double* __restrict in, std::size_t m, double* __restrict re,
-                  double* __restrict im) {
-  for (std::size_t j = 0; j < m; ++j) {
-    re[j] = in[2 * j];
-    im[j] = in[2 * j + 1];
-  }
+// The closed-profile filter of one size (real FFT + transmission): internal/closed_filter.h.
+using internal::ClosedFilterPlan;
+ClosedFilterPlan& plan_for(std::size_t n) {
+  return internal::thread_local_plan<ClosedFilterPlan>(n);
 }
-
-/// The step of ClosedFilterPlan::apply_even (see there) for the pairs (k, N − k), 1 ≤ k ≤
-/// `pairs` < N − k, in place on (re, im) of length N = half: the operations of the Cx code
-/// there, written out on doubles so that the compiler vectorises across k (the N − k side
-/// read and written backwards); the same values bit for bit.
-void spectrum_pairs(std::size_t pairs, std::size_t half, double* __restrict lr,
-                    double* __restrict li, const double* __restrict h,
-                    const double* __restrict wr, const double* __restrict wi) {
-  double* __restrict hr = lr + half;  // hr[−k] = re[N − k]
-  double* __restrict hi = li + half;
-  const double* __restrict hh = h + half;
-  for (std::size_t k = 1; k <= pairs; ++k) {
-    const auto j = static_cast<std::ptrdiff_t>(k);
-    const double ar = lr[k], ai = li[k], br = hr[-j], bi = -hi[-j];
-    const double er = 0.5 * (ar + br), ei = 0.5 * (ai + bi);
-    const double orr = 0.5 * (ai - bi), oi = -(0.5 * (ar - br));  // −i (a − b)/2
-    const double hp = 0.5 * (h[k] + hh[-j]), hm = 0.5 * (h[k] - hh[-j]);
-    const double c = wr[k], d = wi[k], nd = -d;
-    const double wo_r = c * orr - d * oi, wo_i = c * oi + d * orr;  // ω^k O
-    const double e2r = hp * er + hm * wo_r, e2i = hp * ei + hm * wo_i;
-    const double we_r = c * er - nd * ei, we_i = c * ei + nd * er;  // conj(ω^k) E
-    const double o2r = hm * we_r + hp * orr, o2i = hm * we_i + hp * oi;
-    lr[k] = e2r - o2i;  // E' + i O'
-    li[k] = e2i + o2r;
-    hr[-j] = e2r + o2i;  // conj E' + i conj O'
-    hi[-j] = o2r - e2i;
-  }
-}
-
-class ClosedFilterPlan {
- public:
-  explicit ClosedFilterPlan(std::size_t n)
-      : n_(n), even_(n % 2 == 0), fft_(even_ ? n / 2 : n), re_(fft_.size()), im_(fft_.size()) {
-    if (even_) {
-      half_roots_.resize(n / 4 + 1);
-      roots_re_.resize(n / 4 + 1);
-      roots_im_.resize(n / 4 + 1);
-      for (std::size_t k = 0; k <= n / 4; ++k) {
-        half_roots_[k] = unit_root(k, n);
-        roots_re_[k] = half_roots_[k].re;
-        roots_im_[k] = half_roots_[k].im;
-      }
-    }
-  }
-
-  std::size_t size() const { return n_; }
-
-  /// out = filtered in (both of length n).
-  void apply(const double* in, double* out, double cutoff_upr) {
-    set_transmission(cutoff_upr);
-    if (even_)
-      apply_even(in, out);
-    else
-      apply_odd(in, out);
-  }
-
- private:
-  /// H(k) for k = 0..⌊n/2⌋, with the 1/(FFT length) of the inverse transform folded in.
-  void set_transmission(double cutoff_upr) {
-    if (cutoff_upr == cutoff_) return;
-    cutoff_ = cutoff_upr;
-    const std::size_t half = n_ / 2;
-    h_.assign(half + 1, 0.0);
-    const double norm = 1.0 / static_cast<double>(fft_.size());
-    for (std::size_t k = 0; k <= half; ++k) {
-      const double ratio = static_cast<double>(k) / cutoff_upr;
-      // H(k) = 2^−(k/f_c)². Below 2^−1000 (k > 31.6 f_c) it is set to 0: the products with
-      // it would be subnormal (slow) and are 1e-301 of that harmonic's amplitude.
-      if (ratio * ratio > 1000.0) break;  // the rest stays 0
-      h_[k] = std::exp2(-ratio * ratio) * norm;
-    }
-  }
-
-  // Even n = 2N: z_j = x_{2j} + i x_{2j+1}, Z = FFT_N(z). The spectrum of x is X_k = E_k +
-  // ω^k O_k (ω = e^{−2πi/n}) with E_k = (Z_k + conj Z_{N−k})/2 and O_k = (Z_k − conj Z_{N−k})/(2i),
-  // the transforms of the even and odd samples; X_{N−k} = conj(E_k − ω^k O_k). After
-  // Y_k = H_k X_k the even/odd transforms of the output are, with H± = (H_k ± H_{N−k})/2,
-  //   E'_k = H+ E_k + H− ω^k O_k,   O'_k = H− conj(ω^k) E_k + H+ O_k,
-  // and Z'_k = E'_k + i O'_k, Z'_{N−k} = conj E'_k + i conj O'_k; y_{2j} + i y_{2j+1} is the
-  // inverse FFT of Z'. Each pair (k, N − k) is done in place in one step.
-  void apply_even(const double* in, double* out) {
-    const std::size_t half = n_ / 2;
-    deinterleave(in, half, re_.data(), im_.data());
-    fft_.forward(re_.data(), im_.data());
-    // The pairs 1 ≤ k < N − k vectorised (spectrum_pairs), then k = 0 and k = N/2 here.
-    const std::size_t pairs = (half - 1) / 2;
-    spectrum_pairs(pairs, half, re_.data(), im_.data(), h_.data(), roots_re_.data(),
-                   roots_im_.data());
-    for (std::size_t k = 0; 2 * k <= half; k = k == 0 ? pairs + 1 : half) {
-      const std::size_t k2 = k == 0 ? 0 : half - k;  // partner index (Z_N ≡ Z_0)
-      const Cx a{re_[k], im_[k]}, b{re_[k2], -im_[k2]};
-      const Cx e = 0.5 * (a + b);
-      const Cx o = times_minus_i(0.5 * (a - b));
-      const double hp = 0.5 * (h_[k] + h_[half - k]), hm = 0.5 * (h_[k] - h_[half - k]);
-      const Cx w = half_roots_[k];
-      const Cx e2 = hp * e + hm * (w * o);
-      const Cx o2 = hm * (conj(w) * e) + hp * o;
-      re_[k] = e2.re - o2.im;  // E' + i O'
-      im_[k] = e2.im + o2.re;
-      if (k2 != k) {
-        re_[k2] = e2.re + o2.im;  // conj E' + i conj O'
-        im_[k2] = o2.re - e2.im;
-      }
-    }
-    fft_.inverse_interleaved(re_.data(), im_.data(), out);  // y_2j + i y_2j+1
-  }
-
-  void apply_odd(const double* in, double* out) {
-    std::copy(in, in + n_, re_.begin());
-    std::fill(im_.begin(), im_.end(), 0.0);
-    fft_.forward(re_.data(), im_.data());
-    for (std::size_t k = 0; k < n_; ++k) {
-      const double h = h_[std::min(k, n_ - k)];
-      re_[k] *= h;
-      im_[k] *= h;
-    }
-    fft_.inverse(re_.data(), im_.data());
-    std::copy(re_.begin(), re_.end(), out);
-  }
-
-  std::size_t n_;
-  bool even_;
-  ComplexFft fft_;
-  std::vector<double> re_, im_;
-  std::vector<Cx> half_roots_;  // ω_n^k, k ≤ n/4 (even n)
-  std::vector<double> roots_re_, roots_im_;  // the same, split
-  double cutoff_ = std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> h_;
-};
-
-ClosedFilterPlan& plan_for(std::size_t n) { return internal::thread_local_plan<ClosedFilterPlan>(n); }
 
 void check_cutoff(const char* caller, double cutoff_upr) {
   if (!(std::isfinite(cutoff_upr) && cutoff_upr > 0.0)) {
@@ -341,14 +204,30 @@ std::vector<double> filter_nonuniform(const std::vector<double>& angle,
 /// the sines of the grid displacements and two scratch arrays. One per thread, kept between
 /// calls: reallocating them per call cost ~10 page faults per array at n = 36 000.
 struct Rays {
-  Eigen::ArrayXd x, y, r, inv_r;
-  Eigen::ArrayXd deviation, filtered, sin_delta, scratch, scratch2;
+  using Array = Eigen::Map<Eigen::ArrayXd, Eigen::Aligned64>;
+  Array x{nullptr, 0}, y{nullptr, 0}, r{nullptr, 0}, inv_r{nullptr, 0};
+  Array deviation{nullptr, 0}, filtered{nullptr, 0}, sin_delta{nullptr, 0};
+  Array scratch{nullptr, 0}, scratch2{nullptr, 0};
 
+  /// Each array n long, starting on a cache line (internal/aligned.h: the vectorised passes
+  /// and the FFT read and write them 8 doubles at a time); storage kept when n shrinks.
   void resize(Eigen::Index n) {
-    for (Eigen::ArrayXd* a : {&x, &y, &r, &inv_r, &deviation, &filtered, &sin_delta, &scratch,
-                              &scratch2})
-      a->resize(n);
+    if (n == size_) return;
+    const Eigen::Index stride = (n + 7) / 8 * 8;
+    if (static_cast<std::size_t>(9 * stride) > storage_.size())
+      storage_.resize(static_cast<std::size_t>(9 * stride));
+    double* p = storage_.data();
+    for (Array* a : {&x, &y, &r, &inv_r, &deviation, &filtered, &sin_delta, &scratch,
+                     &scratch2}) {
+      new (a) Array(p, n);  // re-seating a Map: Eigen's documented placement new
+      p += stride;
+    }
+    size_ = n;
   }
+
+ private:
+  internal::AlignedDoubles storage_;
+  Eigen::Index size_ = -1;
 };
 
 /// cos(2πj/count), sin(2πj/count) for j < count, cached per thread for the last two sizes
@@ -375,12 +254,81 @@ const GridTable& grid_table(Eigen::Index count) {
   return t;
 }
 
-/// The verdict on the grid displacements once sin δ_j (in v.sin_delta) is known and whether
-/// every |r_j| cos δ_j > 0: the largest |sin δ_j|, or +∞ when some ray is half a step or more
-/// off its grid position (then the samples are not in equiangular order).
-double grid_verdict(const Rays& v, Eigen::Index count, bool all_cos_positive) {
+// ---- the grid check's first stage, vectorised per instruction set ---------------------------
+// Maxima and minima of finite values are exact whatever the grouping, so the 2-, 4- and 8-wide
+// variants (internal/isa.h) give the same values (a zero's sign aside, which only enters as a
+// difference with itself).
+
+/// Stage 1 of grid_error_is_negligible (see there): max_j |D_j|·max(|s_j|, |s_{j+1}|) with
+/// D_j = w_{j+1} − w_j (cyclic), and the extremes of w.
+struct GridSlopeBound {
+  double worst, w_max, w_min;
+};
+template <int W>
+[[gnu::always_inline]] inline GridSlopeBound grid_slope_bound_body(const double* w,
+                                                                   const double* sd,
+                                                                   Eigen::Index count) {
+  using V = typename internal::VecOf<W>::type;
+  using M = typename internal::VecOf<W>::mask;
+  const auto abs = [](V x) { return V(M(x) & (M{} + 0x7fffffffffffffffLL)); };
+  const auto vmax = [](V a, V b) { return a > b ? a : b; };
+  const auto vmin = [](V a, V b) { return a < b ? a : b; };
+  double worst = 0.0, w_max = w[count - 1], w_min = w[count - 1];
+  const Eigen::Index pairs = count - 1;  // D_j for j < count − 1, then the wrap
+  const Eigen::Index packed = pairs - pairs % W;
+  V pworst = V{} + 0.0, pmax = V{} + w[0], pmin = pmax;
+  for (Eigen::Index j = 0; j < packed; j += W) {
+    const V wj = internal::load<V>(w + j);
+    const V d = abs(internal::load<V>(w + j + 1) - wj);
+    const V s0 = abs(internal::load<V>(sd + j));
+    const V s1 = abs(internal::load<V>(sd + j + 1));
+    pworst = vmax(pworst, vmax(d * s0, d * s1));
+    pmax = vmax(pmax, wj);
+    pmin = vmin(pmin, wj);
+  }
+  for (int l = 0; l < W; ++l) {
+    worst = std::max(worst, pworst[l]);
+    w_max = std::max(w_max, pmax[l]);
+    w_min = std::min(w_min, pmin[l]);
+  }
+  for (Eigen::Index j = packed; j < pairs; ++j) {
+    const double d = std::fabs(w[j + 1] - w[j]);
+    worst = std::max({worst, d * std::fabs(sd[j]), d * std::fabs(sd[j + 1])});
+    w_max = std::max(w_max, w[j]);
+    w_min = std::min(w_min, w[j]);
+  }
+  const double d = std::fabs(w[0] - w[count - 1]);  // the wrap: D_{count−1}
+  worst = std::max({worst, d * std::fabs(sd[count - 1]), d * std::fabs(sd[0])});
+  return {worst, w_max, w_min};
+}
+
+GridSlopeBound grid_slope_bound_baseline(const double* w, const double* sd, Eigen::Index count) {
+  return grid_slope_bound_body<2>(w, sd, count);
+}
+#if VCMM_GEOMETRY_X86
+__attribute__((target("avx2"))) GridSlopeBound grid_slope_bound_avx2(const double* w,
+                                                                     const double* sd,
+                                                                     Eigen::Index count) {
+  return grid_slope_bound_body<4>(w, sd, count);
+}
+__attribute__((target("avx512f,avx512dq,avx512vl"))) GridSlopeBound grid_slope_bound_avx512(
+    const double* w, const double* sd, Eigen::Index count) {
+  return grid_slope_bound_body<8>(w, sd, count);
+}
+#endif
+GridSlopeBound grid_slope_bound(const double* w, const double* sd, Eigen::Index count) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return grid_slope_bound_avx512(w, sd, count);
+  if (internal::use_avx2()) return grid_slope_bound_avx2(w, sd, count);
+#endif
+  return grid_slope_bound_baseline(w, sd, count);
+}
+
+/// The verdict on the grid displacements of `count` rays once max |sin δ_j| is known and
+/// whether every |r_j| cos δ_j > 0: max_sin, or +∞ when some ray is half a step or more off its
+/// grid position (then the samples are not in equiangular order).
+double grid_verdict(Eigen::Index count, double max_sin, bool all_cos_positive) {
   const double step = 2 * kPi / static_cast<double>(count);
-  const double max_sin = v.sin_delta.head(count).abs().maxCoeff();
   if (!all_cos_positive || !(max_sin < std::sin(0.5 * step)))
     return std::numeric_limits<double>::infinity();
   return max_sin;
@@ -403,7 +351,8 @@ double max_grid_displacement_sine(Rays& v, Eigen::Index count) {
   const auto yr = y * c - x * sn;
   const double x0 = v.x[0] * v.inv_r[0], y0 = v.y[0] * v.inv_r[0];  // unit ray 0
   v.sin_delta.head(count) = (x0 * yr - y0 * xr) * v.inv_r.head(count);
-  return grid_verdict(v, count, (x0 * xr + y0 * yr).minCoeff() > 0.0);
+  return grid_verdict(count, v.sin_delta.head(count).abs().maxCoeff(),
+                      (x0 * xr + y0 * yr).minCoeff() > 0.0);
 }
 
 /// Accepts the FFT result w of samples whose angles are off the equiangular grid by δ_j
@@ -439,35 +388,7 @@ bool grid_error_is_negligible(Rays& v, Eigen::Index count, double max_sin,
   // so max_j slope_j·|s_j| = max(max_j |D_j||s_j|, max_j |D_j||s_{j+1}|). One vectorised
   // pass for these and the extremes of w (maxima are exact: the same values as separate
   // reductions), no branch per point.
-  double worst = 0.0, w_max = w[count - 1], w_min = w[count - 1];
-  {
-    namespace simd = Eigen::internal;
-    using Packet = simd::packet_traits<double>::type;
-    constexpr Eigen::Index lanes = simd::packet_traits<double>::size;
-    const Eigen::Index pairs = count - 1;  // D_j for j < count − 1, then the wrap
-    const Eigen::Index packed = pairs - pairs % lanes;
-    Packet pworst = simd::pset1<Packet>(0.0), pmax = simd::pset1<Packet>(w[0]), pmin = pmax;
-    for (Eigen::Index j = 0; j < packed; j += lanes) {
-      const Packet wj = simd::ploadu<Packet>(w + j);
-      const Packet d = simd::pabs(simd::psub(simd::ploadu<Packet>(w + j + 1), wj));
-      const Packet s0 = simd::pabs(simd::ploadu<Packet>(sd + j));
-      const Packet s1 = simd::pabs(simd::ploadu<Packet>(sd + j + 1));
-      pworst = simd::pmax(pworst, simd::pmax(simd::pmul(d, s0), simd::pmul(d, s1)));
-      pmax = simd::pmax(pmax, wj);
-      pmin = simd::pmin(pmin, wj);
-    }
-    worst = simd::predux_max(pworst);
-    w_max = std::max(w_max, simd::predux_max(pmax));
-    w_min = std::min(w_min, simd::predux_min(pmin));
-    for (Eigen::Index j = packed; j < pairs; ++j) {
-      const double d = std::fabs(w[j + 1] - w[j]);
-      worst = std::max({worst, d * std::fabs(sd[j]), d * std::fabs(sd[j + 1])});
-      w_max = std::max(w_max, w[j]);
-      w_min = std::min(w_min, w[j]);
-    }
-    const double d = std::fabs(w[0] - w[count - 1]);  // the wrap: D_{count−1}
-    worst = std::max({worst, d * std::fabs(sd[count - 1]), d * std::fabs(sd[0])});
-  }
+  const auto [worst, w_max, w_min] = grid_slope_bound(w, sd, count);
   const double range = w_max - w_min;
   const double tolerance = std::max(1e-3 * range, 1e-10);
   if (2.0 * worst * to_angle <= tolerance) return true;
@@ -475,10 +396,13 @@ bool grid_error_is_negligible(Rays& v, Eigen::Index count, double max_sin,
   // Stage 2: g in v.scratch, F(g) in v.scratch2.
   double* g = v.scratch.data();
   const auto at = [&](Eigen::Index j) { return w[(j % count + count) % count]; };
-  for (Eigen::Index j = 0; j < count; ++j) {
-    const double central = (8.0 * (at(j + 1) - at(j - 1)) - (at(j + 2) - at(j - 2))) / 12.0;
+  const auto g_at = [&](Eigen::Index j, double w_m2, double w_m1, double w_p1, double w_p2) {
+    const double central = (8.0 * (w_p1 - w_m1) - (w_p2 - w_m2)) / 12.0;
     g[j] = central * sd[j] * to_angle;
-  }
+  };
+  for (Eigen::Index j : {Eigen::Index{0}, Eigen::Index{1}, count - 2, count - 1})  // wrapping
+    g_at(j, at(j - 2), at(j - 1), at(j + 1), at(j + 2));
+  for (Eigen::Index j = 2; j < count - 2; ++j) g_at(j, w[j - 2], w[j - 1], w[j + 1], w[j + 2]);
   plan.apply(g, v.scratch2.data(), cutoff_upr);
   const double e_max = (v.scratch.head(count) - v.scratch2.head(count)).abs().maxCoeff();
   return e_max <= tolerance;
@@ -533,7 +457,9 @@ void check_filter_input(std::span<const Point2> points, double cutoff_upr, const
 /// reciprocal lengths and sin δ_j; distances by the series of degree D of internal/
 /// near_circle.h. Of s_j and |r_j| cos δ_j only the verdicts are needed (every |s_j| within
 /// the series' range; every cos term > 0), kept as flags (integer OR: vectorised like the rest,
-/// and exact — the same verdicts as max/min reductions).
+/// and exact — the same verdicts as max/min reductions). max |sin δ_j| likewise, as the
+/// largest bit pattern of |sin δ_j| (non-negative doubles order as their 64-bit patterns: an
+/// integer maximum, vectorised, exactly the value a floating maximum gives).
 struct SetupPass {
   internal::NearCircle k;  ///< about the filter radius R
   double cx, cy;
@@ -544,6 +470,7 @@ struct SetupPass {
 struct SetupVerdict {
   bool off_series;        ///< some |s_j| > s_max (or not a number)
   bool non_positive_cos;  ///< some |r_j| cos δ_j ≤ 0 (or not a number)
+  double max_sin;         ///< max |sin δ_j|
 };
 template <int D>
 [[gnu::always_inline]] inline SetupVerdict setup_pass_body(
@@ -554,7 +481,7 @@ template <int D>
   const internal::NearCircle k = p.k;
   const double cx = p.cx, cy = p.cy, dev0 = p.dev0, s_max = p.s_max;
   const double x0 = p.x0, y0 = p.y0, sense = p.sense;
-  std::int64_t off_series = 0, non_positive_cos = 0;
+  std::int64_t off_series = 0, non_positive_cos = 0, max_sin_bits = 0;
   for (Eigen::Index i = 0; i < count; ++i) {
     const double dx = xy[2 * i] - cx, dy = xy[2 * i + 1] - cy;
     const double s = internal::near_circle_s(dx * dx + dy * dy, k);
@@ -565,11 +492,14 @@ template <int D>
     ry[i] = dy;
     dev[i] = dev0 + internal::near_circle_offset<D>(s, k);  // (R₀ − R) + (r − R₀)
     inv[i] = inv_i;
-    sin_delta[i] = (x0 * yr - y0 * xr) * inv_i;
+    const double sd = (x0 * yr - y0 * xr) * inv_i;
+    sin_delta[i] = sd;
+    const auto bits = std::bit_cast<std::int64_t>(std::fabs(sd));
+    max_sin_bits = max_sin_bits > bits ? max_sin_bits : bits;
     off_series |= static_cast<std::int64_t>(!(std::fabs(s) <= s_max));
     non_positive_cos |= static_cast<std::int64_t>(!(x0 * xr + y0 * yr > 0.0));
   }
-  return {off_series != 0, non_positive_cos != 0};
+  return {off_series != 0, non_positive_cos != 0, std::bit_cast<double>(max_sin_bits)};
 }
 
 /// The arrays of setup_pass_body (in the order of its parameters).
@@ -591,10 +521,16 @@ __attribute__((target("avx2"))) SetupVerdict setup_pass_avx2(const SetupPass& p,
                                                              const SetupArrays& a) {
   return setup_pass_body<D>(p, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
 }
+template <int D>
+__attribute__((target("avx512f,avx512dq,avx512vl,prefer-vector-width=512"))) SetupVerdict
+setup_pass_avx512(const SetupPass& p, Eigen::Index count, const SetupArrays& a) {
+  return setup_pass_body<D>(p, count, a.xy, a.tc, a.ts, a.rx, a.ry, a.dev, a.inv, a.sin_delta);
+}
 #endif
 template <int D>
 SetupVerdict setup_pass_variant(const SetupPass& p, Eigen::Index count, const SetupArrays& a) {
 #if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return setup_pass_avx512<D>(p, count, a);
   if (internal::use_avx2()) return setup_pass_avx2<D>(p, count, a);
 #endif
   return setup_pass_baseline<D>(p, count, a);
@@ -607,6 +543,43 @@ SetupVerdict setup_pass(int degree, const SetupPass& p, Eigen::Index count,
     case 4: return setup_pass_variant<4>(p, count, a);
     default: return setup_pass_variant<6>(p, count, a);
   }
+}
+
+/// The reconstruction (file comment) in one vectorised pass: out (x, y pairs) = xy + (rx, ry)
+/// (w − d) inv, element by element.
+struct ReconstructionArrays {
+  const double *xy, *rx, *ry, *w, *d, *inv;
+  double* out;
+};
+[[gnu::always_inline]] inline void reconstruction_body(
+    std::size_t n, const double* __restrict xy, const double* __restrict rx,
+    const double* __restrict ry, const double* __restrict w, const double* __restrict d,
+    const double* __restrict inv, double* __restrict out) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = (w[i] - d[i]) * inv[i];
+    out[2 * i] = xy[2 * i] + rx[i] * t;
+    out[2 * i + 1] = xy[2 * i + 1] + ry[i] * t;
+  }
+}
+void reconstruct_baseline(const ReconstructionArrays& a, std::size_t n) {
+  reconstruction_body(n, a.xy, a.rx, a.ry, a.w, a.d, a.inv, a.out);
+}
+#if VCMM_GEOMETRY_X86
+__attribute__((target("avx2"))) void reconstruct_avx2(const ReconstructionArrays& a,
+                                                      std::size_t n) {
+  reconstruction_body(n, a.xy, a.rx, a.ry, a.w, a.d, a.inv, a.out);
+}
+__attribute__((target("avx512f,avx512dq,avx512vl,prefer-vector-width=512"))) void
+reconstruct_avx512(const ReconstructionArrays& a, std::size_t n) {
+  reconstruction_body(n, a.xy, a.rx, a.ry, a.w, a.d, a.inv, a.out);
+}
+#endif
+void reconstruct(const ReconstructionArrays& a, std::size_t n) {
+#if VCMM_GEOMETRY_X86
+  if (internal::use_avx512()) return reconstruct_avx512(a, n);
+  if (internal::use_avx2()) return reconstruct_avx2(a, n);
+#endif
+  reconstruct_baseline(a, n);
 }
 
 /// The filter of validated points about the circle (center, radius) (file comment), into
@@ -640,7 +613,7 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
   // The same pass also measures the grid displacements for count = n (as
   // max_grid_displacement_sine would, from the same values): sin δ_j and |r_j| cos δ_j.
   const double cx = center.x, cy = center.y;
-  SetupVerdict verdict{true, true};
+  SetupVerdict verdict{true, true, 0.0};
   const internal::NearCircle k = internal::near_circle_about(radius);
   for (int degree = internal::near_circle_degree_for(radius, deviation_bound); degree != 0;
        degree = degree < 6 ? 6 : 0) {
@@ -690,7 +663,8 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
   bool done = false;
   if (choice == FilterPathChoice::nonuniform) {
     // the caller asked for the convolution with the true angles
-  } else if (const double s = series ? grid_verdict(v, count, !verdict.non_positive_cos)
+  } else if (const double s = series ? grid_verdict(count, verdict.max_sin,
+                                                    !verdict.non_positive_cos)
                                      : max_grid_displacement_sine(v, count);
              std::isfinite(s)) {
     ClosedFilterPlan& plan = plan_for(n);
@@ -734,15 +708,13 @@ void filter_about(std::span<const Point2> points, double cutoff_upr, Point2 cent
       return;
     }
   }
-  // q_i = p_i + (p_i − c) (w_i − d_i) / r_i.
-  v.scratch = (v.filtered - v.deviation) * v.inv_r;
-  out.points.clear();  // keeps the storage; no value-initialisation of n points (~1.5 µs)
-  out.points.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto e = static_cast<Eigen::Index>(i);
-    out.points.push_back(
-        {points[i].x + v.x[e] * v.scratch[e], points[i].y + v.y[e] * v.scratch[e]});
-  }
+  // q_i = p_i + (p_i − c) (w_i − d_i) / r_i. A reused profile of n points is overwritten (no
+  // value-initialisation).
+  out.points.resize(n);
+  reconstruct({reinterpret_cast<const double*>(points.data()), v.x.data(), v.y.data(),
+               v.filtered.data(), v.deviation.data(), v.inv_r.data(),
+               reinterpret_cast<double*>(out.points.data())},
+              n);
   if (filtered_ls)
     *filtered_ls = ls ? std::move(*ls) : internal::fit_least_squares_circle(out.points);
 }

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -546,6 +547,43 @@ TEST(Draw, IsTheMeanPlusTheCholeskyFactorTimesTheNormals) {
       const double tolerance =
           1e-12 * (std::sqrt(m.covariance()(i, i)) + std::abs(want[i]));
       EXPECT_NEAR(got[i], want[i], tolerance) << i;
+    }
+  }
+}
+
+// draw() skips the zeros below each block of the Cholesky factor (a block-diagonal
+// covariance: no correlation between functions). The full-triangle sum in the same order must
+// come out bit for bit (sign of zero included), also where an estimate is −0 — the one case
+// where adding a zero term changes a value (−0 + +0 = +0), so there nothing is skipped.
+TEST(Draw, SkippingTheFactorsZeroBlocksGivesTheSameBits) {
+  for (const bool negative_zero : {false, true}) {
+    SCOPED_TRACE(negative_zero ? "an estimate of -0" : "no estimate -0");
+    std::array<ErrorFunctionEstimate, axis_error_count> fns;
+    for (int f = 0; f < axis_error_count; ++f) {
+      auto& e = fns[static_cast<std::size_t>(f)];
+      e.coefficients = {1e-4 * (f + 1), -2e-5 * f, 0.0};
+      e.standard_uncertainties = {1e-4, 5e-5, 2e-5};
+      e.correlation = Eigen::MatrixXd{{1.0, 0.5, 0.1}, {0.5, 1.0, 0.3}, {0.1, 0.3, 1.0}};
+    }
+    if (negative_zero) fns[4].coefficients[2] = -0.0;
+    std::array<EstimatedValue, squareness_count> sq{};
+    sq[0] = {0.5e-6, 0.3e-6};
+    sq[1] = {-1e-7, 0.1e-6};
+    sq[2] = {0.0, 0.2e-6};
+    const KinematicModel m(KinematicChain::moving_bridge(), kRanges, fns, sq);
+    const Eigen::Index k = m.parameter_count();  // every parameter uncertain
+    const Eigen::MatrixXd l = m.covariance().llt().matrixL();
+    for (std::uint64_t seed = 31; seed < 36; ++seed) {
+      SeededRandomSource r1(seed), r2(seed);
+      std::vector<double> z(static_cast<std::size_t>(k));
+      r2.fill_standard_normal(z);
+      Eigen::VectorXd want = m.mean();
+      for (Eigen::Index a = 0; a < k; ++a)
+        for (Eigen::Index b = 0; b <= a; ++b) want[a] += l(a, b) * z[static_cast<std::size_t>(b)];
+      const Eigen::VectorXd got = m.draw(r1).parameters();
+      for (Eigen::Index i = 0; i < k; ++i)
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(got[i]), std::bit_cast<std::uint64_t>(want[i]))
+            << "parameter " << i << ": " << got[i] << " vs " << want[i];
     }
   }
 }

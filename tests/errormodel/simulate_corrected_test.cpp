@@ -434,6 +434,58 @@ TEST(PreparedMeasurement, AnyRotationDegreeIsBitForBitTheMeasurementOverload) {
   }
 }
 
+// The xy kernel has planar forms with the arm masks of the built-in chains as constants
+// (every n_z = 0, no z = −0, no stylus component −0): the example's moving bridge, a fixed
+// bridge, and the inputs that must take the data-driven form instead — a tilted normal, a z of
+// −0, a stylus component of −0 — each bit for bit the Measurement overload (three passes, the
+// data-driven kinematic kernel).
+TEST(PreparedMeasurement, PlanarAndGeneralKernelFormsAreBitForBitTheMeasurementOverload) {
+  const DigitalModel example = read_digital_model_file(kExample);
+  DigitalModel fixed = example;  // cubic translations, quadratic rotations, as the example's
+  std::array<ErrorFunctionEstimate, axis_error_count> functions;
+  for (int f = 0; f < axis_error_count; ++f) {
+    const bool rotation = is_rotation(static_cast<AxisError>(f));
+    const double unit = rotation ? 0.2e-6 : 0.1e-3;  // 0.2 µrad, 0.1 µm
+    auto& e = functions[static_cast<std::size_t>(f)];
+    for (int j = 0; j < (rotation ? 3 : 4); ++j) {
+      e.coefficients.push_back((0.3 + 0.1 * static_cast<double>(f % 5) - 0.2 * j) * unit);
+      e.standard_uncertainties.push_back(unit);
+    }
+  }
+  std::array<EstimatedValue, squareness_count> squareness{};
+  squareness[1] = {0.5e-6, 0.3e-6};
+  fixed.kinematics =
+      KinematicModel(KinematicChain::fixed_bridge(), kRanges, functions, squareness);
+  const Measurement best = best_estimate(example, 360, 94);
+  Measurement tilted = best;  // one normal out of the plane: not planar
+  const double c = std::cos(0.1), s = std::sin(0.1);
+  tilted.normals.col(7) = Eigen::Vector3d(c * best.normals(0, 7), c * best.normals(1, 7), s);
+  Measurement negative_zero_z = best;
+  negative_zero_z.points_mm(2, 11) = -0.0;
+  Measurement zero_z = best;  // z = +0 everywhere: planar
+  zero_z.points_mm.row(2).setZero();
+  Measurement negative_zero_stylus = best;
+  negative_zero_stylus.stylus_offset_mm.x() = -0.0;
+  const struct {
+    const char* name;
+    const DigitalModel* model;
+    const Measurement* m;
+  } cases[] = {{"moving bridge", &example, &best},
+               {"fixed bridge", &fixed, &best},
+               {"fixed bridge, tilted normal", &fixed, &tilted},
+               {"tilted normal", &example, &tilted},
+               {"a z of -0", &example, &negative_zero_z},
+               {"every z +0", &example, &zero_z},
+               {"stylus x of -0", &example, &negative_zero_stylus}};
+  for (const auto& t : cases) {
+    SCOPED_TRACE(t.name);
+    const PreparedMeasurement prepared(*t.m, *t.model);
+    SeededRandomSource rng(95);
+    expect_prepared_is_bit_for_bit(*t.model, *t.m, prepared,
+                                   draw_errors(*t.model, *t.m, rng), Stages::all());
+  }
+}
+
 TEST(PreparedMeasurementBadInput, AMachinePositionOutOfRangeIsNamed) {
   // The ring centred 40 mm from the end of X's travel: points beyond it need the X axis at
   // up to ~1245 mm of a 0 … 1200 mm range.

@@ -167,25 +167,101 @@ TEST(ComplexFft, InstructionSetVariantsAreBitIdentical) {
   }
 }
 
-// End to end: the Gaussian filter (FFT path, with its vectorised first pass) and the
-// equiangular synthesis give the same bits with the baseline variants forced (internal/isa.h).
-TEST(InstructionSetVariants, FilterAndSynthesisAreBitIdenticalWithTheBaselineForced) {
-  for (const std::size_t n : {360u, 3600u, 3601u}) {
+/// The instruction-set levels this CPU runs, baseline first (internal/isa.h).
+std::vector<IsaLevel> levels_on_this_cpu() {
+  std::vector<IsaLevel> out = {IsaLevel::baseline};
+  if (cpu_has_avx2()) out.push_back(IsaLevel::avx2);
+  if (cpu_has_avx2() && cpu_has_avx512()) out.push_back(IsaLevel::avx512);
+  return out;
+}
+
+// The inverse with interleaved output (its own last-pass kernels, 2, 4 and 8 wide) gives the
+// bits of the baseline at every instruction-set level, over the sizes of the accuracy test.
+TEST(ComplexFft, InterleavedInverseIsBitIdenticalAtEveryInstructionSetLevel) {
+  for (const std::size_t n : test_sizes()) {
+    const Signal x = random_signal(n, static_cast<unsigned>(7 * n + 3));
+    ComplexFft fft(n);
+    std::vector<double> base(2 * n);
+    {
+      Signal y = x;
+      ForceBaselineIsa baseline;
+      fft.inverse_interleaved(y.re.data(), y.im.data(), base.data());
+    }
+    for (const IsaLevel level : levels_on_this_cpu()) {
+      Signal y = x;
+      std::vector<double> out(2 * n);
+      LimitIsa limit(level);
+      fft.inverse_interleaved(y.re.data(), y.im.data(), out.data());
+      EXPECT_EQ(std::memcmp(out.data(), base.data(), 2 * n * sizeof(double)), 0)
+          << "level " << static_cast<int>(level) << ", n = " << n;
+    }
+  }
+}
+
+// The forward transform of interleaved input (split by the first pass's loads for radix 2, 4
+// and 8 first passes, else split first; Bluestein; n = 1) gives the bits of split + forward
+// with the baseline forced, at every instruction-set level.
+TEST(ComplexFft, ForwardFromInterleavedIsTheForwardBitForBitAtEveryLevel) {
+  for (const std::size_t n : test_sizes()) {
+    const Signal x = random_signal(n, static_cast<unsigned>(11 * n + 5));
+    std::vector<double> in(2 * n);
+    for (std::size_t j = 0; j < n; ++j) {
+      in[2 * j] = x.re[j];
+      in[2 * j + 1] = x.im[j];
+    }
+    ComplexFft fft(n);
+    Signal base = x;
+    {
+      ForceBaselineIsa baseline;
+      fft.forward(base.re.data(), base.im.data());
+    }
+    for (const IsaLevel level : levels_on_this_cpu()) {
+      LimitIsa limit(level);
+      Signal y{std::vector<double>(n, -1.0), std::vector<double>(n, -1.0)};
+      fft.forward_from_interleaved(in.data(), y.re.data(), y.im.data());
+      EXPECT_EQ(std::memcmp(y.re.data(), base.re.data(), n * sizeof(double)), 0)
+          << "level " << static_cast<int>(level) << ", n = " << n;
+      EXPECT_EQ(std::memcmp(y.im.data(), base.im.data(), n * sizeof(double)), 0)
+          << "level " << static_cast<int>(level) << ", n = " << n;
+    }
+  }
+}
+
+// End to end: the Gaussian filter (FFT path, with its vectorised first pass and spectrum
+// steps) and the equiangular synthesis give the same bits at every instruction-set level
+// (internal/isa.h), against the baseline forced.
+TEST(InstructionSetVariants, FilterAndSynthesisAreBitIdenticalAtEveryLevel) {
+  std::cout << "[ levels   ] " << levels_on_this_cpu().size() << " on this CPU\n";
+  for (const std::size_t n : {360u, 3600u, 3601u, 3602u, 36000u}) {
     const std::vector<Point2> profile = test::lobed_noisy_ring(n, 20261127, 5e-5);
     const LeastSquaresCircle ls = least_squares_circle(profile);
-    FilteredProfile fast, base;
-    LeastSquaresCircle fast_ls, base_ls;
-    gaussian_filtered_profile(profile, 50.0, ls, fast, &fast_ls);
+    FilteredProfile base;
+    LeastSquaresCircle base_ls;
+    std::vector<double> deviations(n), base_closed;
+    for (std::size_t j = 0; j < n; ++j)
+      deviations[j] = std::hypot(profile[j].x - ls.center.x, profile[j].y - ls.center.y) -
+                      ls.radius;
     {
       ForceBaselineIsa baseline;
       EXPECT_FALSE(use_avx2());
+      EXPECT_FALSE(use_avx512());
       gaussian_filtered_profile(profile, 50.0, ls, base, &base_ls);
+      base_closed = gaussian_filter_closed(deviations, 150.0);
     }
-    ASSERT_EQ(fast.points.size(), base.points.size());
-    EXPECT_EQ(fast.path, FilterPath::fft) << "n = " << n;
-    EXPECT_EQ(std::memcmp(fast.points.data(), base.points.data(), n * sizeof(Point2)), 0)
-        << "n = " << n;
-    EXPECT_EQ(fast_ls.radius, base_ls.radius) << "n = " << n;
+    for (const IsaLevel level : levels_on_this_cpu()) {
+      LimitIsa limit(level);
+      FilteredProfile fast;
+      LeastSquaresCircle fast_ls;
+      gaussian_filtered_profile(profile, 50.0, ls, fast, &fast_ls);
+      ASSERT_EQ(fast.points.size(), base.points.size());
+      EXPECT_EQ(fast.path, FilterPath::fft) << "n = " << n;
+      EXPECT_EQ(std::memcmp(fast.points.data(), base.points.data(), n * sizeof(Point2)), 0)
+          << "level " << static_cast<int>(level) << ", n = " << n;
+      EXPECT_EQ(fast_ls.radius, base_ls.radius) << "n = " << n;
+      const std::vector<double> closed = gaussian_filter_closed(deviations, 150.0);
+      EXPECT_EQ(std::memcmp(closed.data(), base_closed.data(), n * sizeof(double)), 0)
+          << "level " << static_cast<int>(level) << ", n = " << n;
+    }
 
     std::vector<double> a(151), b(151), v_fast(n), v_base(n);
     std::mt19937_64 rng(n);
@@ -202,6 +278,27 @@ TEST(InstructionSetVariants, FilterAndSynthesisAreBitIdenticalWithTheBaselineFor
     }
     EXPECT_EQ(std::memcmp(v_fast.data(), v_base.data(), n * sizeof(double)), 0) << "n = " << n;
   }
+}
+
+// A ceiling lowers the level while alive and restores it after; nested ceilings never raise it.
+TEST(InstructionSetVariants, LimitIsaLowersTheLevelAndRestoresIt) {
+  EXPECT_EQ(isa_ceiling(), IsaLevel::avx512);
+  {
+    LimitIsa avx2(IsaLevel::avx2);
+    EXPECT_EQ(isa_ceiling(), IsaLevel::avx2);
+    EXPECT_FALSE(use_avx512());
+    EXPECT_EQ(use_avx2(), cpu_has_avx2());
+    {
+      LimitIsa wider(IsaLevel::avx512);
+      EXPECT_EQ(isa_ceiling(), IsaLevel::avx2);
+      ForceBaselineIsa baseline;
+      EXPECT_EQ(isa_ceiling(), IsaLevel::baseline);
+      EXPECT_FALSE(use_avx2());
+    }
+    EXPECT_EQ(isa_ceiling(), IsaLevel::avx2);
+  }
+  EXPECT_EQ(isa_ceiling(), IsaLevel::avx512);
+  EXPECT_EQ(use_avx512(), cpu_has_avx2() && cpu_has_avx512());
 }
 
 TEST(ComplexFft, UnknownVariantIsRefused) {

@@ -322,12 +322,12 @@ INSTANTIATE_TEST_SUITE_P(
 // their sums in the same four lanes: the same bits whichever runs (each variant the CPU lacks
 // falls back to the next narrower one).
 TEST_P(LeastSquaresRegimes, InstructionSetVariantsGiveTheSameBits) {
-  using vcmm::geometry::internal::Isa;
+  using vcmm::geometry::internal::IsaLevel;
   const Regime g = GetParam();
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const auto pts = regime_profile(g, seed);
     const LeastSquaresCircle fit = least_squares_circle(pts);
-    for (const Isa isa : {Isa::avx2, Isa::baseline}) {
+    for (const IsaLevel isa : {IsaLevel::avx2, IsaLevel::baseline}) {
       LeastSquaresCircle other;
       {
         const vcmm::geometry::internal::LimitIsa limit(isa);
@@ -347,7 +347,7 @@ TEST_P(LeastSquaresRegimes, InstructionSetVariantsGiveTheSameBits) {
 // AVX-512 or baseline code: the same bits, for every n mod 8 (blocks of 8, packets of 2, an
 // odd last point).
 TEST(LeastSquaresCircleOnRays, InstructionSetVariantsGiveTheSameBits) {
-  using vcmm::geometry::internal::Isa;
+  using vcmm::geometry::internal::IsaLevel;
   using vcmm::geometry::internal::least_squares_circle_on_rays;
   std::mt19937_64 rng(20261127);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -367,7 +367,7 @@ TEST(LeastSquaresCircleOnRays, InstructionSetVariantsGiveTheSameBits) {
     const auto fit = least_squares_circle_on_rays(c, 85.5, w.data(), rx.data(), ry.data(),
                                                   inv.data(), n);
     ASSERT_TRUE(fit.has_value()) << n;
-    for (const Isa isa : {Isa::avx2, Isa::baseline}) {
+    for (const IsaLevel isa : {IsaLevel::avx2, IsaLevel::baseline}) {
       std::optional<LeastSquaresCircle> other;
       {
         const vcmm::geometry::internal::LimitIsa limit(isa);
@@ -468,12 +468,12 @@ TEST(LeastSquaresCircleBadInput, NonFiniteCoordinate) {
 // shifted by), NaN and ±∞, in x or in y, on every instruction-set variant — the same message as
 // validate_profile's, naming the point.
 TEST(LeastSquaresCircleBadInput, NonFiniteCoordinateAnywhereIsNamed) {
-  using vcmm::geometry::internal::Isa;
+  using vcmm::geometry::internal::IsaLevel;
   const double bad[] = {std::nan(""), std::numeric_limits<double>::infinity(),
                         -std::numeric_limits<double>::infinity()};
   for (const std::size_t n : {std::size_t{3}, std::size_t{64}, std::size_t{101}}) {
     const auto ring = circle_points({812.3, -555.1}, 85.5, n);
-    for (const Isa isa : {Isa::avx512, Isa::avx2, Isa::baseline}) {
+    for (const IsaLevel isa : {IsaLevel::avx512, IsaLevel::avx2, IsaLevel::baseline}) {
       const vcmm::geometry::internal::LimitIsa limit(isa);
       for (std::size_t i = 0; i < n; ++i)
         for (const double v : bad)

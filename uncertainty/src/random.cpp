@@ -70,6 +70,14 @@ struct Avx512Keys {
   __m512i key0[philox_rounds], key1[philox_rounds], s0, s1;
 };
 
+// The high 32 bits of each 64-bit product moved to the low half by swapping the halves
+// (vpshufd, the shuffle port) rather than shifted (vpsrlq, which shares the multiplier's port
+// at 512 bits): the high half then holds the product's low part, garbage the next round
+// ignores as above.
+__attribute__((target("avx512f"), always_inline)) inline __m512i high_to_low(__m512i p) {
+  return _mm512_maskz_shuffle_epi32(0xffff, p, _MM_PERM_CDAB);
+}
+
 template <int V>
 __attribute__((target("avx512f"), always_inline)) inline void philox_avx512_pass(
     const Avx512Keys& k, std::uint64_t first_block, std::size_t n, std::uint64_t* words) {
@@ -90,9 +98,9 @@ __attribute__((target("avx512f"), always_inline)) inline void philox_avx512_pass
     for (int v = 0; v < V; ++v) {
       const __m512i p0 = _mm512_maskz_mul_epu32(all, c0[v], m0);
       const __m512i p1 = _mm512_maskz_mul_epu32(all, c2[v], m1);
-      c0[v] = _mm512_ternarylogic_epi64(_mm512_maskz_srli_epi64(all, p1, 32), c1[v], k.key0[r], 0x96);
+      c0[v] = _mm512_ternarylogic_epi64(high_to_low(p1), c1[v], k.key0[r], 0x96);
       c1[v] = p1;
-      c2[v] = _mm512_ternarylogic_epi64(_mm512_maskz_srli_epi64(all, p0, 32), c3[v], k.key1[r], 0x96);
+      c2[v] = _mm512_ternarylogic_epi64(high_to_low(p0), c3[v], k.key1[r], 0x96);
       c3[v] = p0;
     }
   }
@@ -346,18 +354,34 @@ const ScaledTables& scaled_tables() {
   return tables;
 }
 
-// The squeeze lines of each wedge (ziggurat.h, wedge_accepts): y accepted below
+// What the slow path reads for a layer i, in one 64-byte entry (one cache line): the
+// abscissae x[i], x[i+1], the wedge's f[i] and f[i+1] − f[i] (the same value the subtraction
+// gives in place), and the squeeze lines (ziggurat.h, wedge_accepts): y accepted below
 // lower_a + lower_b·x − margin, rejected above upper_a + upper_b·x + margin. Layers 0 (the
 // base: no wedge test) and the one containing x = 1 get lines that never decide (±inf).
+// About 1.5 % of the words take the slow path, each in a random layer, between bulk passes
+// that evict these tables: four scattered tables cost a cache miss each, this one costs one.
 constexpr double kSqueezeMargin = 1e-14;
-struct SqueezeTables {
-  std::array<double, kLayers> lower_a{}, lower_b{}, upper_a{}, upper_b{};
-  SqueezeTables() {
+struct alignas(64) SlowLayer {
+  double x = 0.0, x_next = 0.0, f = 0.0, f_step = 0.0;
+  double lower_a = 0.0, lower_b = 0.0, upper_a = 0.0, upper_b = 0.0;
+};
+static_assert(sizeof(SlowLayer) == 64, "SlowLayer: one cache line");
+struct SlowTables {
+  std::array<SlowLayer, kLayers> layer{};
+  double r = 0.0;  // start of the tail
+  SlowTables() {
     const ZigguratTables& z = ziggurat_tables();
+    r = z.r;
     constexpr double inf = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < static_cast<std::size_t>(kLayers); ++i) {
-      lower_a[i] = -inf;
-      upper_a[i] = inf;
+      SlowLayer& e = layer[i];
+      e.x = z.x[i];
+      e.x_next = z.x[i + 1];
+      e.f = z.f[i];
+      e.f_step = z.f[i + 1] - z.f[i];
+      e.lower_a = -inf;
+      e.upper_a = inf;
       if (i == 0) continue;
       const double x0 = z.x[i + 1], x1 = z.x[i];  // the wedge is [x0, x1)
       const bool concave = x1 <= 1.0, convex = x0 >= 1.0;
@@ -366,26 +390,30 @@ struct SqueezeTables {
       const double chord_a = z.f[i + 1] - chord_b * x0;
       const double m = 0.5 * (x0 + x1), fm = portable_exp(-0.5 * m * m);
       const double tangent_b = -m * fm, tangent_a = fm - tangent_b * m;
-      lower_a[i] = concave ? chord_a : tangent_a;
-      lower_b[i] = concave ? chord_b : tangent_b;
-      upper_a[i] = concave ? tangent_a : chord_a;
-      upper_b[i] = concave ? tangent_b : chord_b;
+      e.lower_a = concave ? chord_a : tangent_a;
+      e.lower_b = concave ? chord_b : tangent_b;
+      e.upper_a = concave ? tangent_a : chord_a;
+      e.upper_b = concave ? tangent_b : chord_b;
     }
   }
 };
 
-const SqueezeTables& squeeze_tables() {
-  static const SqueezeTables tables;
+inline const SlowTables& slow_tables() {
+  static const SlowTables tables;
   return tables;
+}
+
+// y < exp(−x²/2) for a point of layer e's wedge, the squeezes first.
+inline bool layer_wedge_accepts(const SlowLayer& e, double x, double y) {
+  if (y < e.lower_a + e.lower_b * x - kSqueezeMargin) return true;
+  if (y > e.upper_a + e.upper_b * x + kSqueezeMargin) return false;
+  return y < portable_exp(-0.5 * x * x);
 }
 
 }  // namespace
 
 bool wedge_accepts(std::size_t layer, double x, double y) {
-  const SqueezeTables& s = squeeze_tables();
-  if (y < s.lower_a[layer] + s.lower_b[layer] * x - kSqueezeMargin) return true;
-  if (y > s.upper_a[layer] + s.upper_b[layer] * x + kSqueezeMargin) return false;
-  return y < portable_exp(-0.5 * x * x);
+  return layer_wedge_accepts(slow_tables().layer[layer], x, y);
 }
 
 }  // namespace internal
@@ -449,11 +477,12 @@ void RandomStream::refill(std::size_t hint_words) {
 }
 
 double RandomStream::normal_slow_path(std::uint64_t word) {
-  const internal::ZigguratTables& z = internal::ziggurat_tables();
+  const internal::SlowTables& z = internal::slow_tables();
   for (;;) {
     const std::size_t layer = word & 0xffu;
-    const double x = uniform53(word) * z.x[layer];
-    if (x < z.x[layer + 1]) return with_sign_bit(x, word);
+    const internal::SlowLayer& e = z.layer[layer];
+    const double x = uniform53(word) * e.x;
+    if (x < e.x_next) return with_sign_bit(x, word);
     if (layer == 0) {  // x ≥ r in the base layer: a draw from the tail beyond r
       double a = 0.0, b = 0.0;
       do {
@@ -462,8 +491,8 @@ double RandomStream::normal_slow_path(std::uint64_t word) {
       } while (b + b < a * a);
       return with_sign_bit(z.r + a, word);
     }
-    const double y = z.f[layer] + uniform53(next_u64()) * (z.f[layer + 1] - z.f[layer]);
-    if (internal::wedge_accepts(layer, x, y)) return with_sign_bit(x, word);
+    const double y = e.f + uniform53(next_u64()) * e.f_step;
+    if (internal::layer_wedge_accepts(e, x, y)) return with_sign_bit(x, word);
     word = next_u64();  // rejected: start again with a fresh word
   }
 }

@@ -18,6 +18,19 @@ namespace vcmm::errormodel::internal {
 
 inline constexpr int kFirstOrderMaxCoeffs = max_legendre_degree + 1;
 
+/// The arm masks M of the two built-in chains (KinematicChain), for kernels that take them
+/// as compile-time constants (first_order_displacement's kArms); `data` reads them from
+/// FirstOrderKernel::arm_mask. Rows: the axis whose rotation acts; columns: the travel.
+///   moving bridge (base → Y → X → Z): X {0,0,1}, Y {1,0,1}, Z {0,0,0}
+///   fixed bridge (base → X → Z, workpiece on Y): X {0,0,1}, Y {1,1,1}, Z {0,0,0}
+enum class ArmPattern { data, moving_bridge, fixed_bridge };
+
+inline constexpr bool arm_mask_of(ArmPattern p, int a, int j) {
+  constexpr bool moving[3][3] = {{false, false, true}, {true, false, true}, {false, false, false}};
+  constexpr bool fixed[3][3] = {{false, false, true}, {true, true, true}, {false, false, false}};
+  return p == ArmPattern::moving_bridge ? moving[a][j] : fixed[a][j];
+}
+
 /// The first-order formula with the chain turned into data: the arm of axis k is
 ///   r_k = t + Σ_j M_kj q_j a_j,   M_kj = 1 if axis j's travel lies between carriage k's
 /// rotation centre and the tip (tool side: axes after k; workpiece side: all tool axes, the
@@ -32,6 +45,9 @@ struct FirstOrderKernel {
   double limit2 = 0.0;  // bound on u²
   int degree = 0;           // highest degree of any function (the D of first_order_error)
   int rotation_degree = 0;  // highest degree of a rotation function (its DR)
+  /// The pattern arm_mask equals, when no component of t is −0 (first_order_displacement:
+  /// then the constant masks give the same bits); else ArmPattern::data.
+  ArmPattern arm_pattern = ArmPattern::data;
 };
 
 /// The kernel of `errors` (a realisation of `model`) with stylus offset t. Throws
@@ -46,25 +62,44 @@ FirstOrderKernel first_order_kernel(const KinematicModel& model, const Kinematic
                                           const Eigen::Ref<const Eigen::Matrix3Xd>& p,
                                           const Eigen::Vector3d& t, const char* caller);
 
-/// The first-order tip error e = −v at the tip position p = (p0, p1, p2) (mm) for functions of
-/// degree ≤ D, the rotations' of degree ≤ DR ≤ D; kZ: also e2 (else e2 is left untouched).
-/// Returns 1 when a reading is out of range or non-finite (NaN fails every comparison; ±inf
-/// exceeds the bound), else 0.
+/// The first-order tip displacement v = −e at the tip position p = (p0, p1, p2) (mm) for
+/// functions of degree ≤ D, the rotations' of degree ≤ DR ≤ D; kZ: also v2 (else v2 is left
+/// untouched). Returns 1 when a reading is out of range or non-finite (NaN fails every
+/// comparison; ±inf exceeds the bound), else 0.
 /// Any D, DR at least the functions' degrees give the same bits: the zero padding is +0 (the
 /// power-basis coefficients are sums started at +0, never −0), and a Horner step from a +0
 /// leading coefficient gives (±0)·u + m = m exactly, so the padded evaluation reaches each
 /// function's true leading coefficient with the value m itself.
-template <int D, bool kZ, int DR = D>
+/// kArms ≠ data (k.arm_pattern == kArms, which holds only when no t_j is −0): the arm
+/// r_aj = t_j + M_aj q_j is t_j + q_j where M_aj = 1 (1·q = q exactly) and t_j where M_aj = 0
+/// (0·q = ±0 for finite q, and t + ±0 = t for t ≠ 0, +0 + ±0 = +0): the same bits without
+/// the 9 multiplications and with 2 or 3 additions instead of 9. (A non-finite q makes the point
+/// bad, and the caller discards every output then.)
+template <int D, bool kZ, int DR = D, ArmPattern kArms = ArmPattern::data>
   requires(0 <= DR && DR <= D)
-[[gnu::always_inline]] inline int first_order_error(const FirstOrderKernel& k, double p0,
-                                                    double p1, double p2, double& e0, double& e1,
-                                                    double& e2) {
+[[gnu::always_inline]] inline int first_order_displacement(const FirstOrderKernel& k, double p0,
+                                                           double p1, double p2, double& v0,
+                                                           double& v1, double& v2) {
   const double q[3] = {p0 - k.t[0], p1 - k.t[1], p2 - k.t[2]};
   double u[3];
   for (int a = 0; a < 3; ++a) u[a] = q[a] * k.u_scale[a] + k.u_offset[a];
   const int bad = static_cast<int>(!(u[0] * u[0] <= k.limit2) | !(u[1] * u[1] <= k.limit2) |
                                    !(u[2] * u[2] <= k.limit2));
-  double v0 = 0.0, v1 = 0.0, v2 = 0.0;
+  double tq[3] = {};  // t_j + q_j, the arm of a masked travel (constant masks only)
+  if constexpr (kArms != ArmPattern::data) {
+    for (int j = 0; j < 3; ++j) {
+      if (arm_mask_of(kArms, 0, j) || arm_mask_of(kArms, 1, j) || arm_mask_of(kArms, 2, j))
+        tq[j] = k.t[j] + q[j];
+    }
+  }
+  const auto arm = [&](int a, int j) {
+    if constexpr (kArms == ArmPattern::data) {
+      return k.t[j] + k.arm_mask[a][j] * q[j];
+    } else {
+      return arm_mask_of(kArms, a, j) ? tq[j] : k.t[j];
+    }
+  };
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0;
   // Fully unrolled (constant trip counts) so that the loop over points vectorises.
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
@@ -79,15 +114,29 @@ template <int D, bool kZ, int DR = D>
       for (int j = kDegree[c] - 1; j >= 0; --j) acc = acc * u[a] + m[j];
       f[c] = acc;
     }
-    const double rx = k.t[0] + k.arm_mask[a][0] * q[0];
-    const double ry = k.t[1] + k.arm_mask[a][1] * q[1];
-    const double rz = k.t[2] + k.arm_mask[a][2] * q[2];
-    v0 += f[0] + (f[4] * rz - f[5] * ry);
-    v1 += f[1] + (f[5] * rx - f[3] * rz);
-    if constexpr (kZ) v2 += f[2] + (f[3] * ry - f[4] * rx);
+    const double rx = arm(a, 0);
+    const double ry = arm(a, 1);
+    const double rz = arm(a, 2);
+    s0 += f[0] + (f[4] * rz - f[5] * ry);
+    s1 += f[1] + (f[5] * rx - f[3] * rz);
+    if constexpr (kZ) s2 += f[2] + (f[3] * ry - f[4] * rx);
   }
-  v0 += k.b0z * q[2] - k.c0y * q[1];
-  v1 -= k.a0z * q[2];
+  s0 += k.b0z * q[2] - k.c0y * q[1];
+  s1 -= k.a0z * q[2];
+  v0 = s0;
+  v1 = s1;
+  if constexpr (kZ) v2 = s2;
+  return bad;
+}
+
+/// The first-order tip error e = −v at p (first_order_displacement, data-driven arms).
+template <int D, bool kZ, int DR = D>
+  requires(0 <= DR && DR <= D)
+[[gnu::always_inline]] inline int first_order_error(const FirstOrderKernel& k, double p0,
+                                                    double p1, double p2, double& e0, double& e1,
+                                                    double& e2) {
+  double v0 = 0.0, v1 = 0.0, v2 = 0.0;
+  const int bad = first_order_displacement<D, kZ, DR>(k, p0, p1, p2, v0, v1, v2);
   e0 = -v0;
   e1 = -v1;
   if constexpr (kZ) e2 = -v2;

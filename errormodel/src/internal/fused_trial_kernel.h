@@ -32,6 +32,9 @@ struct FusedTrialInput {
   const double* roughness = nullptr;
   const double* shift = nullptr;
   const double* noise = nullptr;
+  /// Every nz is 0 and no pz is −0 (recorded by PreparedMeasurement): lets the xy form drop
+  /// the z normal's terms (the same bits; fused_trial_kernel.cpp).
+  bool planar = false;
   double scale = 1.0;
   double inverse_scale = 1.0;
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();

@@ -196,7 +196,7 @@ template <int W, class V>
   if constexpr (W == 2) {
     store(out, V(__builtin_shufflevector(a[0], a[1], 0, 2)));
     store(out + stride, V(__builtin_shufflevector(a[0], a[1], 1, 3)));
-  } else {
+  } else if constexpr (W == 4) {
     const V t0 = __builtin_shufflevector(a[0], a[1], 0, 4, 2, 6);  // a0₀ a1₀ a0₂ a1₂
     const V t1 = __builtin_shufflevector(a[0], a[1], 1, 5, 3, 7);
     const V t2 = __builtin_shufflevector(a[2], a[3], 0, 4, 2, 6);
@@ -205,6 +205,58 @@ template <int W, class V>
     store(out + stride, V(__builtin_shufflevector(t1, t3, 0, 1, 4, 5)));
     store(out + 2 * stride, V(__builtin_shufflevector(t0, t2, 2, 3, 6, 7)));
     store(out + 3 * stride, V(__builtin_shufflevector(t1, t3, 2, 3, 6, 7)));
+  } else {
+    static_assert(W == 8);
+    V t[8], u[8];
+    for (int k = 0; k < 8; k += 2) {  // pairs: t[k] = a_k₀ a_{k+1}₀ a_k₂ a_{k+1}₂ …
+      t[k] = __builtin_shufflevector(a[k], a[k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+      t[k + 1] = __builtin_shufflevector(a[k], a[k + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+    }
+    for (int k = 0; k < 8; k += 4) {  // quads: u[k] = lanes 0 and 4 of a_k … a_{k+3}, …
+      u[k] = __builtin_shufflevector(t[k], t[k + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+      u[k + 1] = __builtin_shufflevector(t[k + 1], t[k + 3], 0, 1, 8, 9, 4, 5, 12, 13);
+      u[k + 2] = __builtin_shufflevector(t[k], t[k + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+      u[k + 3] = __builtin_shufflevector(t[k + 1], t[k + 3], 2, 3, 10, 11, 6, 7, 14, 15);
+    }
+    for (int l = 0; l < 4; ++l) {  // u[l]: lanes l and l + 4 of a_0 … a_3; u[l + 4]: of a_4 … a_7
+      store(out + l * stride,
+            V(__builtin_shufflevector(u[l], u[l + 4], 0, 1, 2, 3, 8, 9, 10, 11)));
+      store(out + (l + 4) * stride,
+            V(__builtin_shufflevector(u[l], u[l + 4], 4, 5, 6, 7, 12, 13, 14, 15)));
+    }
+  }
+}
+
+/// Stores a and b interleaved: out[2l] = a[l], out[2l + 1] = b[l] for l < W.
+template <int W, class V>
+[[gnu::always_inline]] inline void store_interleaved(double* out, const V& a, const V& b) {
+  if constexpr (W == 2) {
+    store(out, V(__builtin_shufflevector(a, b, 0, 2)));
+    store(out + 2, V(__builtin_shufflevector(a, b, 1, 3)));
+  } else if constexpr (W == 4) {
+    store(out, V(__builtin_shufflevector(a, b, 0, 4, 1, 5)));
+    store(out + 4, V(__builtin_shufflevector(a, b, 2, 6, 3, 7)));
+  } else {
+    static_assert(W == 8);
+    store(out, V(__builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11)));
+    store(out + 8, V(__builtin_shufflevector(a, b, 4, 12, 5, 13, 6, 14, 7, 15)));
+  }
+}
+
+/// a[l] = in[2l], b[l] = in[2l + 1] for l < W.
+template <int W, class V>
+[[gnu::always_inline]] inline void load_deinterleaved(const double* in, V& a, V& b) {
+  const V lo = load<V>(in), hi = load<V>(in + W);
+  if constexpr (W == 2) {
+    a = __builtin_shufflevector(lo, hi, 0, 2);
+    b = __builtin_shufflevector(lo, hi, 1, 3);
+  } else if constexpr (W == 4) {
+    a = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
+    b = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
+  } else {
+    static_assert(W == 8);
+    a = __builtin_shufflevector(lo, hi, 0, 2, 4, 6, 8, 10, 12, 14);
+    b = __builtin_shufflevector(lo, hi, 1, 3, 5, 7, 9, 11, 13, 15);
   }
 }
 
@@ -277,6 +329,11 @@ template <std::size_t R, int W>
     std::size_t q = 0;
     for (; q + W <= s; q += W)
       general_butterfly<R, V>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
+    if constexpr (W >= 8) {
+      using V4 = typename VecOf<4>::type;
+      for (; q + 4 <= s; q += 4)
+        general_butterfly<R, V4>(ar + q, ai + q, br + q, bi + q, s, sm, c, d, twiddled);
+    }
     if constexpr (W >= 4) {
       using V2 = typename VecOf<2>::type;
       for (; q + 2 <= s; q += 2)
@@ -287,14 +344,17 @@ template <std::size_t R, int W>
   }
 }
 
-/// The first pass (s = 1) for R a multiple of W (or R = 2, W = 4): W consecutive p at a time,
+/// The first pass (s = 1) for R a multiple of W (or R = 2, W ≥ 4): W consecutive p at a time,
 /// contiguous loads x[p + t m] and twiddles, the outputs y[R p + u] stored by W × W
 /// transposes; scalar for the last p.
+/// With `in` not null, x_j = in[2j] + i in[2j + 1] instead (xr, xi unused): the split into
+/// real and imaginary parts done by the loads (the same values).
 template <std::size_t R, int W>
 [[gnu::always_inline]] inline void first_pass(const double* __restrict xr,
                                               const double* __restrict xi,
                                               double* __restrict yr, double* __restrict yi,
-                                              const ComplexFft::Stage& st) {
+                                              const ComplexFft::Stage& st,
+                                              const double* __restrict in) {
   using V = typename VecOf<W>::type;
   const std::size_t m = st.m;
   const double* __restrict wr = st.tw_re.data();
@@ -302,8 +362,15 @@ template <std::size_t R, int W>
   // Same operations as general_butterfly with the twiddles per element.
   const auto butterfly = [&]<class T>(std::size_t p, T (&ar)[R], T (&ai)[R]) {
     for (std::size_t t = 0; t < R; ++t) {
-      ar[t] = load<T>(xr + p + t * m);
-      ai[t] = load<T>(xi + p + t * m);
+      if (in == nullptr) {
+        ar[t] = load<T>(xr + p + t * m);
+        ai[t] = load<T>(xi + p + t * m);
+      } else if constexpr (std::is_same_v<T, double>) {
+        ar[t] = in[2 * (p + t * m)];
+        ai[t] = in[2 * (p + t * m) + 1];
+      } else {
+        load_deinterleaved<W>(in + 2 * (p + t * m), ar[t], ai[t]);
+      }
     }
     Butterfly<R>::apply(ar, ai);
     for (std::size_t u = 1; u < R; ++u) {
@@ -322,12 +389,10 @@ template <std::size_t R, int W>
         store_transposed<W>(yr + R * p + u, R, ar + u);
         store_transposed<W>(yi + R * p + u, R, ai + u);
       }
-    } else {  // R = 2, W = 4: interleave
-      static_assert(R == 2 && W == 4);
-      store(yr + 2 * p, V(__builtin_shufflevector(ar[0], ar[1], 0, 4, 1, 5)));
-      store(yr + 2 * p + 4, V(__builtin_shufflevector(ar[0], ar[1], 2, 6, 3, 7)));
-      store(yi + 2 * p, V(__builtin_shufflevector(ai[0], ai[1], 0, 4, 1, 5)));
-      store(yi + 2 * p + 4, V(__builtin_shufflevector(ai[0], ai[1], 2, 6, 3, 7)));
+    } else {  // R = 2, W ≥ 4: interleave
+      static_assert(R == 2);
+      store_interleaved<W>(yr + 2 * p, ar[0], ar[1]);
+      store_interleaved<W>(yi + 2 * p, ai[0], ai[1]);
     }
   }
   for (; p < m; ++p) {
@@ -355,6 +420,8 @@ template <std::size_t R, int W>
   };
   std::size_t q = 0;
   for (; q + W <= s; q += W) butterfly.template operator()<V>(q);
+  if constexpr (W >= 8)
+    for (; q + 4 <= s; q += 4) butterfly.template operator()<typename VecOf<4>::type>(q);
   if constexpr (W >= 4)
     for (; q + 2 <= s; q += 2) butterfly.template operator()<typename VecOf<2>::type>(q);
   for (; q < s; ++q) butterfly.template operator()<double>(q);
@@ -368,23 +435,22 @@ template <std::size_t R, int W>
                                                          const double* __restrict xi,
                                                          std::size_t s, int first,
                                                          double* __restrict out) {
-  using V = typename VecOf<W>::type;
-  std::size_t q = 0;
-  for (; q + W <= s; q += W) {
+  const auto vectors = [&]<int VW>(std::size_t q) {  // q … q + VW − 1
+    using V = typename VecOf<VW>::type;
     V ar[R], ai[R];
     load_and_transform(xr + q, xi + q, s, ar, ai);
     for (std::size_t u = 0; u < R; ++u) {
-      const V a = first == 0 ? ar[u] : ai[u], b = first == 0 ? ai[u] : ar[u];
       double* o = out + 2 * (q + s * u);
-      if constexpr (W == 2) {
-        store(o, V(__builtin_shufflevector(a, b, 0, 2)));
-        store(o + 2, V(__builtin_shufflevector(a, b, 1, 3)));
-      } else {
-        store(o, V(__builtin_shufflevector(a, b, 0, 4, 1, 5)));
-        store(o + 4, V(__builtin_shufflevector(a, b, 2, 6, 3, 7)));
-      }
+      if (first == 0)
+        store_interleaved<VW>(o, ar[u], ai[u]);
+      else
+        store_interleaved<VW>(o, ai[u], ar[u]);
     }
-  }
+  };
+  std::size_t q = 0;
+  for (; q + W <= s; q += W) vectors.template operator()<W>(q);
+  if constexpr (W >= 8)
+    for (; q + 4 <= s; q += 4) vectors.template operator()<4>(q);
   for (; q < s; ++q) {
     double ar[R], ai[R];
     load_and_transform(xr + q, xi + q, s, ar, ai);
@@ -395,13 +461,24 @@ template <std::size_t R, int W>
   }
 }
 
+/// Whether the first pass of this radix has a kernel of its own (first_pass), which can also
+/// read interleaved input: radices 2, 4 and 8 at every width W ≤ 8.
+constexpr bool has_first_pass_kernel(std::size_t radix) {
+  return radix == 2 || radix == 4 || radix == 8;
+}
+
 template <std::size_t R, int W>
 [[gnu::always_inline]] inline void radix_pass(const double* __restrict xr,
                                               const double* __restrict xi,
                                               double* __restrict yr, double* __restrict yi,
-                                              std::size_t s, const ComplexFft::Stage& st) {
-  if constexpr (R % W == 0 || R == 2) {
-    if (s == 1 && st.m > 1) return first_pass<R, W>(xr, xi, yr, yi, st);
+                                              std::size_t s, const ComplexFft::Stage& st,
+                                              const double* in = nullptr) {
+  static_assert(!has_first_pass_kernel(R) || R % W == 0 || R == 2 || (W == 8 && R % 4 == 0));
+  if (s == 1 && st.m > 1) {
+    if constexpr (R % W == 0 || R == 2)
+      return first_pass<R, W>(xr, xi, yr, yi, st, in);
+    else if constexpr (W == 8 && R % 4 == 0)  // radix 4 in the AVX-512 variant
+      return first_pass<R, 4>(xr, xi, yr, yi, st, in);
   }
   strided_pass<R, W>(xr, xi, yr, yi, s, st);
 }
@@ -427,6 +504,14 @@ template <std::size_t R, int W>
 
 /// All stages of a plan: x → y → x …, the result in (re, im). Inlined into each
 /// instruction-set variant below.
+/// re[j] = in[2j], im[j] = in[2j + 1] for j < n.
+inline void deinterleave(const double* in, std::size_t n, double* re, double* im) {
+  for (std::size_t j = 0; j < n; ++j) {
+    re[j] = in[2 * j];
+    im[j] = in[2 * j + 1];
+  }
+}
+
 /// out[2j + first] = xr[j], out[2j + 1 − first] = xi[j] (see last_pass_interleaved).
 inline void interleave(const double* xr, const double* xi, std::size_t n, int first,
                        double* out) {
@@ -439,21 +524,42 @@ inline void interleave(const double* xr, const double* xi, std::size_t n, int fi
 /// All stages of a plan: x → y → x …, the result in (re, im) or, when `interleaved` is not
 /// null, in interleaved[2j + first], interleaved[2j + 1 − first] (re and im then scratch).
 /// Inlined into each instruction-set variant below.
+/// With `in` not null the input is in[2j] + i in[2j + 1] (re and im only receive the result):
+/// read by the first pass where it has a kernel of its own, else split into (re, im) first.
 template <int W>
 [[gnu::always_inline]] inline void run_stages(const ComplexFft::Stage* stages,
                                               std::size_t count, double* re, double* im,
-                                              double* sr, double* si, double* interleaved,
-                                              int first) {
+                                              double* sr, double* si,
+                                              const ComplexFft::PassIo& io) {
+  double* const interleaved = io.out;
+  const int first = io.first;
   double *xr = re, *xi = im, *yr = sr, *yi = si;
   std::size_t s = 1, n = 1;
   for (std::size_t k = 0; k < count; ++k) n *= stages[k].radix;
+  std::size_t k0 = 0;  // the passes done before the loop below
+  if (io.in != nullptr) {
+    const ComplexFft::Stage& st = stages[0];
+    if (count >= 2 && has_first_pass_kernel(st.radix)) {
+      switch (st.radix) {
+        case 2: radix_pass<2, W>(xr, xi, yr, yi, 1, st, io.in); break;
+        case 4: radix_pass<4, W>(xr, xi, yr, yi, 1, st, io.in); break;
+        default: radix_pass<8, W>(xr, xi, yr, yi, 1, st, io.in); break;
+      }
+      std::swap(xr, yr);
+      std::swap(xi, yi);
+      s = st.radix;
+      k0 = 1;
+    } else {
+      deinterleave(io.in, n, re, im);
+    }
+  }
   const std::size_t last_radix = count > 0 ? stages[count - 1].radix : 0;
   const bool fused_output = interleaved != nullptr && count > 0 && last_radix != 7 &&
                             last_radix != 11 && last_radix != 13;
   // The last pass (m = 1) writes the interleaved output, or runs in place when the pass count
   // is odd (else the result would end in the scratch), or is an ordinary pass.
   const std::size_t ordinary = fused_output || count % 2 == 1 ? count - 1 : count;
-  for (std::size_t k = 0; k < ordinary; ++k) {
+  for (std::size_t k = k0; k < ordinary; ++k) {
     const ComplexFft::Stage& st = stages[k];
     switch (st.radix) {
       case 2: radix_pass<2, W>(xr, xi, yr, yi, s, st); break;
@@ -497,16 +603,22 @@ template <int W>
 // The instruction-set variants (internal/isa.h): the same source, so the same operations in the
 // same order on every element, hence bit-identical results.
 void passes_baseline(const ComplexFft::Stage* stages, std::size_t count, double* re,
-                     double* im, double* sr, double* si, double* interleaved, int first) {
-  run_stages<2>(stages, count, re, im, sr, si, interleaved, first);
+                     double* im, double* sr, double* si, const ComplexFft::PassIo& io) {
+  run_stages<2>(stages, count, re, im, sr, si, io);
 }
 
 #if VCMM_GEOMETRY_X86
 __attribute__((target("avx2"))) void passes_avx2(const ComplexFft::Stage* stages,
                                                  std::size_t count, double* re, double* im,
-                                                 double* sr, double* si, double* interleaved,
-                                                 int first) {
-  run_stages<4>(stages, count, re, im, sr, si, interleaved, first);
+                                                 double* sr, double* si,
+                                                 const ComplexFft::PassIo& io) {
+  run_stages<4>(stages, count, re, im, sr, si, io);
+}
+
+__attribute__((target("avx512f,avx512dq,avx512vl"))) void passes_avx512(
+    const ComplexFft::Stage* stages, std::size_t count, double* re, double* im, double* sr,
+    double* si, const ComplexFft::PassIo& io) {
+  run_stages<8>(stages, count, re, im, sr, si, io);
 }
 #endif
 
@@ -515,6 +627,7 @@ const std::vector<FftVariant>& fft_variants_on_this_cpu() {
     std::vector<FftVariant> out = {{"baseline", passes_baseline}};
 #if VCMM_GEOMETRY_X86
     if (cpu_has_avx2()) out.push_back({"avx2", passes_avx2});
+    if (cpu_has_avx2() && cpu_has_avx512()) out.push_back({"avx512", passes_avx512});
 #endif
     return out;
   }();
@@ -572,32 +685,38 @@ ComplexFft::ComplexFft(std::size_t n) : n_(n), scratch_re_(n), scratch_im_(n) {
   }
 }
 
-ComplexFft::StagePasses ComplexFft::selected_passes() {
-  static const StagePasses widest = fft_variants().back().passes;  // chosen once
-  return use_avx2() ? widest : passes_baseline;                    // internal/isa.h
+ComplexFft::StagePasses ComplexFft::selected_passes() {  // internal/isa.h
+#if VCMM_GEOMETRY_X86
+  if (use_avx512()) return passes_avx512;
+  if (use_avx2()) return passes_avx2;
+#endif
+  return passes_baseline;
 }
 
-void ComplexFft::forward(double* re, double* im) { run(selected_passes(), re, im); }
+void ComplexFft::forward(double* re, double* im) { run(selected_passes(), re, im, {}); }
+
+void ComplexFft::forward_from_interleaved(const double* in, double* re, double* im) {
+  run(selected_passes(), re, im, {in, nullptr, 0});
+}
 
 void ComplexFft::inverse_interleaved(double* re, double* im, double* out) {
-  run(selected_passes(), im, re, out, 1);  // the inverse: see inverse()
+  run(selected_passes(), im, re, {nullptr, out, 1});  // the inverse: see inverse()
 }
 
 void ComplexFft::forward_with(std::string_view variant, double* re, double* im) {
   for (const FftVariant& v : fft_variants())
-    if (v.name == variant) return run(v.passes, re, im);
+    if (v.name == variant) return run(v.passes, re, im, {});
   throw std::invalid_argument("ComplexFft::forward_with: no variant " + std::string(variant));
 }
 
-void ComplexFft::run(StagePasses passes, double* re, double* im, double* interleaved,
-                     int first) {
+void ComplexFft::run(StagePasses passes, double* re, double* im, const PassIo& io) {
   if (conv_) {
+    if (io.in != nullptr) deinterleave(io.in, n_, re, im);
     bluestein(passes, re, im);
-    if (interleaved != nullptr) interleave(re, im, n_, first, interleaved);
+    if (io.out != nullptr) interleave(re, im, n_, io.first, io.out);
     return;
   }
-  passes(stages_.data(), stages_.size(), re, im, scratch_re_.data(), scratch_im_.data(),
-         interleaved, first);
+  passes(stages_.data(), stages_.size(), re, im, scratch_re_.data(), scratch_im_.data(), io);
 }
 
 // Bluestein: jk = (j² + k² − (k − j)²)/2, so X_k = c_k Σ_j (x_j c_j) conj(c_{k−j}) with the
@@ -644,13 +763,13 @@ void ComplexFft::bluestein(StagePasses passes, double* re, double* im) {
   }
   std::fill(work_re_.begin() + static_cast<std::ptrdiff_t>(n_), work_re_.end(), 0.0);
   std::fill(work_im_.begin() + static_cast<std::ptrdiff_t>(n_), work_im_.end(), 0.0);
-  conv_->run(passes, work_re_.data(), work_im_.data());
+  conv_->run(passes, work_re_.data(), work_im_.data(), {});
   for (std::size_t k = 0; k < m; ++k) {
     const Cx v = Cx{work_re_[k], work_im_[k]} * chirp_hat_[k];
     work_re_[k] = v.re;
     work_im_[k] = v.im;
   }
-  conv_->run(passes, work_im_.data(), work_re_.data());  // the inverse (fft.h)
+  conv_->run(passes, work_im_.data(), work_re_.data(), {});  // the inverse (fft.h)
   for (std::size_t k = 0; k < n_; ++k) {
     const Cx v = Cx{work_re_[k], work_im_[k]} * chirp_[k];
     re[k] = v.re;

@@ -6,9 +6,9 @@
 // smooth size ≥ 2n). Eigen's kissfft backend was measured first: 41 µs for a forward + inverse
 // real transform at n = 3600 and 0.13 s at the prime n = 3607 (its generic radix is O(p²)),
 // against a 30 µs budget (gaussian_filter.cpp). The passes are written on vectors of doubles
-// (GCC/Clang vector extensions) and compiled twice, for the package's baseline ISA and for
-// AVX2, chosen once at run time; both give the same bits (fft_variants). A plan holds its own
-// scratch: one plan per thread.
+// (GCC/Clang vector extensions) and compiled three times, for the package's baseline ISA, for
+// AVX2 and for AVX-512, the widest the CPU has chosen once at run time; all give the same bits
+// (fft_variants). A plan holds its own scratch: one plan per thread.
 #pragma once
 
 #include <algorithm>
@@ -16,6 +16,8 @@
 #include <memory>
 #include <string_view>
 #include <vector>
+
+#include "aligned.h"  // (relative: benchmarks and tests include this header by path)
 
 namespace vcmm::geometry::internal {
 
@@ -50,6 +52,10 @@ class ComplexFft {
   /// its last pass (re and im are left as scratch): the same values, one pass less for callers
   /// that want pairs (the real transforms of even length). out: 2n doubles, not re or im.
   void inverse_interleaved(double* re, double* im, double* out);
+  /// forward() of x_j = in[2j] + i in[2j + 1] (in: 2n doubles, not re or im), the result in
+  /// (re, im): the same values, with the split into real and imaginary parts done by the first
+  /// pass's loads (radix 2, 4 or 8 first; else a split first).
+  void forward_from_interleaved(const double* in, double* re, double* im);
   /// forward() by the named instruction-set variant (fft_variants(); std::invalid_argument for
   /// another name): for tests and benchmarks — every variant gives the same bits.
   void forward_with(std::string_view variant, double* re, double* im);
@@ -60,32 +66,37 @@ class ComplexFft {
     std::vector<double> tw_re, tw_im;  // [(u − 1) m + p] = ω_L^{p u}, L = radix · m
     std::vector<Cx> roots;             // ω_radix^t, generic radices only
   };
+  /// Interleaved input or output of a run: in[2j] + i in[2j + 1] as the input (then re, im
+  /// only receive the result), out[2j + first], out[2j + 1 − first] for the result.
+  struct PassIo {
+    const double* in = nullptr;
+    double* out = nullptr;
+    int first = 0;
+  };
   /// All passes of a plan on (re, im) with scratch (sr, si): one per instruction-set variant.
   using StagePasses = void (*)(const Stage* stages, std::size_t count, double* re,
-                               double* im, double* sr, double* si, double* interleaved,
-                               int first);
+                               double* im, double* sr, double* si, const PassIo& io);
 
  private:
   static std::size_t smooth_size_at_least(std::size_t v);
   void setup_bluestein();
   static StagePasses selected_passes();
-  void run(StagePasses passes, double* re, double* im, double* interleaved = nullptr,
-           int first = 0);
+  void run(StagePasses passes, double* re, double* im, const PassIo& io);
   void bluestein(StagePasses passes, double* re, double* im);
 
   std::size_t n_;
   std::vector<Stage> stages_;
-  std::vector<double> scratch_re_, scratch_im_;
+  AlignedDoubles scratch_re_, scratch_im_;
   std::unique_ptr<ComplexFft> conv_;  // Bluestein only
   std::vector<Cx> chirp_, chirp_hat_;
-  std::vector<double> work_re_, work_im_;
+  AlignedDoubles work_re_, work_im_;
 };
 
 /// An instruction-set variant of the FFT's passes, compiled from the same source: "baseline"
-/// (the package's target ISA) and, on x86-64 CPUs that have it, "avx2" (4 doubles a vector;
-/// no FMA). Same operations in the same order, so the same bits on every machine
-/// (internal/isa.h; tests/geometry/fft_test.cpp); forward() uses the last (widest) one unless
-/// a ForceBaselineIsa is alive on the thread.
+/// (the package's target ISA) and, on x86-64 CPUs that have them, "avx2" (4 doubles a vector)
+/// and "avx512" (8 doubles a vector; F, DQ, VL); no FMA. Same operations in the same order, so
+/// the same bits on every machine (internal/isa.h; tests/geometry/fft_test.cpp); forward()
+/// uses the last (widest) one unless a ForceBaselineIsa is alive on the thread.
 struct FftVariant {
   std::string_view name;
   ComplexFft::StagePasses passes;

@@ -188,6 +188,7 @@ class KinematicModel {
   Eigen::MatrixXd covariance_;
   std::vector<Eigen::Index> uncertain_;  // parameters with non-zero variance
   Eigen::MatrixXd cholesky_;             // lower factor of covariance_[uncertain_, uncertain_]
+  std::vector<Eigen::Index> column_end_;  // rows of cholesky_'s column j that draw() adds
 };
 
 /// One realisation of the kinematic errors: the parameter values actually in effect (mm,

@@ -176,6 +176,7 @@ class PreparedMeasurement {
   Eigen::ArrayXXd soa_;         ///< N × 6: x, y, z, n_x, n_y, n_z (workpiece axes)
   Eigen::ArrayXXd harmonics_;   ///< N × 2K: Re_k, Im_k for k = 1 … K
   int probe_order_ = 0;
+  bool planar_ = false;  ///< every n_z is 0 and no z is −0 (a ring scan's points and normals)
 };
 
 /// draw_errors for a prepared measurement: the same draw as draw_errors(model,

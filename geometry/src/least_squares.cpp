@@ -777,11 +777,11 @@ class Fitter {
   /// With SSE2 two points are loaded as two packets and unpacked into an x and a y packet
   /// (load_pair; blocks of 8 with AVX-512, load_blocks_avx512); every sum is accumulated
   /// exactly as from the stored arrays (same packets, same order).
-  /// check_points: the checks of validate_profile(points, 3, …) beyond the count (which the
-  /// caller has made), in the same order with the same messages, the finiteness of every
-  /// coordinate decided from the moments of this pass (check_points_of below).
-  void load_and_kasa_start(std::span<const Point2> points, bool check_points, double& cx,
-                           double& cy, double& radius) {
+  /// check: when set, the checks of validate_profile(points, check->min_points,
+  /// check->caller) beyond the count (which the caller has made), in the same order with the
+  /// same messages, the finiteness of every coordinate decided from the moments of this pass.
+  void load_and_kasa_start(std::span<const Point2> points, const internal::ProfileCheck* check,
+                           double& cx, double& cy, double& radius) {
     Packet sx = simd::pset1<Packet>(0.0), sy = sx, sxx = sx, syy = sx, sxy = sx, sxz = sx,
            syz = sx;
 #if defined(__SSE2__) && !defined(__AVX__)
@@ -813,19 +813,20 @@ class Fitter {
       y_[j] = q.y - shift_.y;
       finite = finite && std::isfinite(q.x) && std::isfinite(q.y);
     }
-    if (check_points) {
+    if (check) {
       // A coordinate that is not finite makes x² or y² of its point (p − p₀; for p₀ itself
       // ∞ − ∞) +∞ or NaN, and a lane sum that takes one stays so: finite lane sums of x² and
       // y² prove every packed coordinate finite. (Sums that overflow on finite data only
       // send the search to validate_profile, which finds nothing; check_span then refuses.)
       const Lanes<2> squares = m.sxx + m.syy;
       if (!(finite && std::isfinite(squares[0]) && std::isfinite(squares[1])))
-        validate_profile(points, 3, kCaller);
-      internal::validate_profile_shape(points, 3, kCaller, /*require_non_collinear=*/true);
+        validate_profile(points, check->min_points, check->caller);
+      internal::validate_profile_shape(points, check->min_points, check->caller,
+                                       /*require_non_collinear=*/true);
     }
     check_span(extent);
 #else
-    if (check_points) validate_profile(points, 3, kCaller);
+    if (check) validate_profile(points, check->min_points, check->caller);
     const auto accumulate = [&](Packet x, Packet y) {
       const Packet xx = simd::pmul(x, x), yy = simd::pmul(y, y);
       const Packet z = simd::padd(xx, yy);
@@ -932,29 +933,39 @@ class Fitter {
 
 namespace {
 
-LeastSquaresCircle fit_circle(std::span<const Point2> points, bool check_points);
+LeastSquaresCircle fit_circle(std::span<const Point2> points,
+                              const internal::ProfileCheck* check);
 
 }  // namespace
 
 LeastSquaresCircle least_squares_circle(std::span<const Point2> points) {
   // validate_profile(points, 3, kCaller): the count here, the rest in the fit's first pass.
   if (points.size() < 3) validate_profile(points, 3, kCaller);
-  return fit_circle(points, /*check_points=*/true);
+  const internal::ProfileCheck check{3, kCaller};
+  return fit_circle(points, &check);
 }
 
 LeastSquaresCircle internal::fit_least_squares_circle(std::span<const Point2> points) {
-  return fit_circle(points, /*check_points=*/false);
+  return fit_circle(points, nullptr);
+}
+
+LeastSquaresCircle internal::fit_least_squares_circle_checked(std::span<const Point2> points,
+                                                              const ProfileCheck& check) {
+  const std::size_t min_points = std::max<std::size_t>(check.min_points, 3);
+  if (points.size() < min_points) validate_profile(points, min_points, check.caller);
+  return fit_circle(points, &check);
 }
 
 namespace {
 
-LeastSquaresCircle fit_circle(std::span<const Point2> points, bool check_points) {
+LeastSquaresCircle fit_circle(std::span<const Point2> points,
+                              const internal::ProfileCheck* check) {
   thread_local Workspace workspace;
   Fitter fit(points, workspace);
   const double nd = static_cast<double>(fit.size());
 
   double cx = 0.0, cy = 0.0, r0 = 0.0;
-  fit.load_and_kasa_start(points, check_points, cx, cy, r0);
+  fit.load_and_kasa_start(points, check, cx, cy, r0);
   // Shift for the directions in M: ≈ ū ≈ (centroid − c) / R — zero for a full circle,
   // towards the arc's middle for an arc.
   const Point2 g = fit.centroid();

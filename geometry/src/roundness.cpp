@@ -72,8 +72,10 @@ RoundnessEvaluation evaluate_roundness(std::span<const Point2> points,
     // A closed profile takes the closed filter; an arc (a gap wider than λc/2 = π/f_c, which
     // the closed filter refuses) the open-profile filter.
     const double cutoff = *request.filter_cutoff_upr;
-    validate_profile(points, 8, "gaussian_filtered_profile");
-    const LeastSquaresCircle raw_ls = internal::fit_least_squares_circle(points);
+    // validate_profile(points, 8, "gaussian_filtered_profile"), its finiteness part from the
+    // moments of the LS fit's first pass.
+    const LeastSquaresCircle raw_ls =
+        internal::fit_least_squares_circle_checked(points, {8, "gaussian_filtered_profile"});
     LeastSquaresCircle* ls_out = request.least_squares ? &filtered_ls.emplace() : nullptr;
     FilteredProfile f;
     // The closed filter about the LS circle just fitted (the same fit it would repeat); it

@@ -413,4 +413,69 @@ TEST(ExtremeScale, CirclesStayFiniteAndCertifiedLeastSquaresSaysWhy) {
 }
 
 }  // namespace
+// evaluate_roundness with a filter checks the raw profile inside the LS fit's first pass
+// (its moments prove every coordinate finite) instead of a validate_profile pass of its own:
+// the refusal must stay validate_profile(points, 8, "gaussian_filtered_profile")'s, naming
+// the first non-finite point, at every position (packed blocks and the tail) and ISA level.
+TEST(EvaluateRoundnessInput, FilteredEvaluationNamesTheFirstNonFinitePoint) {
+  std::vector<Point2> ring;
+  for (int i = 0; i < 67; ++i) {
+    const double t = 2.0 * std::numbers::pi * i / 67.0;
+    ring.push_back({40.0 + 12.5 * std::cos(t), -7.0 + 12.5 * std::sin(t)});
+  }
+  RoundnessRequest request;
+  request.filter_cutoff_upr = 15.0;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  using vcmm::geometry::internal::IsaLevel;
+  int checked = 0;
+  for (const IsaLevel isa : {IsaLevel::avx512, IsaLevel::avx2, IsaLevel::baseline}) {
+    const vcmm::geometry::internal::LimitIsa limit(isa);
+    for (std::size_t at : {std::size_t{0}, std::size_t{1}, std::size_t{7}, std::size_t{8},
+                           std::size_t{33}, std::size_t{64}, std::size_t{66}}) {
+      for (const double bad : {nan, inf, -inf}) {
+        for (int coordinate = 0; coordinate < 2; ++coordinate) {
+          std::vector<Point2> p = ring;
+          (coordinate == 0 ? p[at].x : p[at].y) = bad;
+          if (at != 0) p[at - 1].y = bad;  // two bad points: the first is named
+          std::string expected;
+          try {
+            validate_profile(p, 8, "gaussian_filtered_profile");
+          } catch (const InvalidInput& e) {
+            expected = e.what();
+          }
+          ASSERT_NE(expected.find("non-finite"), std::string::npos) << expected;
+          try {
+            (void)evaluate_roundness(p, request);
+            ADD_FAILURE() << "accepted a non-finite coordinate at " << at;
+          } catch (const InvalidInput& e) {
+            EXPECT_EQ(std::string(e.what()), expected) << at;
+          }
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(checked, 3 * 7 * 3 * 2);
+  // Too few points and collinear points keep their messages too.
+  const std::vector<Point2> few(ring.begin(), ring.begin() + 7);
+  std::vector<Point2> line;
+  for (int i = 0; i < 20; ++i) line.push_back({1.0 * i, 2.0 * i});
+  for (const std::vector<Point2>* p : {&few, static_cast<const std::vector<Point2>*>(&line)}) {
+    std::string expected;
+    try {
+      validate_profile(*p, 8, "gaussian_filtered_profile");
+    } catch (const InvalidInput& e) {
+      expected = e.what();
+    }
+    ASSERT_FALSE(expected.empty());
+    try {
+      (void)evaluate_roundness(*p, request);
+      ADD_FAILURE() << "accepted " << expected;
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(std::string(e.what()), expected);
+    }
+  }
+}
+
 }  // namespace vcmm::test

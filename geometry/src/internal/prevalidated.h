@@ -29,6 +29,20 @@ void validate_profile_shape(std::span<const Point2> points, std::size_t min_poin
 /// points passed validate_profile(points, 3, …) — ≥ 3 finite points, not all collinear.
 LeastSquaresCircle fit_least_squares_circle(std::span<const Point2> points);
 
+/// The input check of a caller that fits the LS circle first: validate_profile(points,
+/// min_points, caller) (min_points ≥ 3).
+struct ProfileCheck {
+  std::size_t min_points = 3;
+  const char* caller = "least_squares_circle";
+};
+
+/// least_squares_circle(points) with validate_profile(points, check.min_points, check.caller)
+/// instead of its own check — the same refusals, in the same order, with the caller's name;
+/// the finiteness of every coordinate decided from the moments of the fit's first pass (no
+/// pass of its own). For evaluate_roundness, whose filter fits the raw profile first.
+LeastSquaresCircle fit_least_squares_circle_checked(std::span<const Point2> points,
+                                                    const ProfileCheck& check);
+
 /// minimum_zone_circle(points, options) without validate_profile; precondition as above.
 MinimumZoneCircle fit_minimum_zone_circle(std::span<const Point2> points,
                                           const MinimumZoneOptions& options);

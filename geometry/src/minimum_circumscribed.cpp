@@ -202,8 +202,8 @@ ExactCircle exact_circle_of(std::span<const Point2> points, const Support& s) {
 /// three-loop formulation is O(m³) predicate calls, with m ≤ a few hundred candidates.
 void order_farthest_first(std::span<const Point2> points, Point2 c,
                           std::vector<std::size_t>& v) {
-  std::vector<std::pair<double, std::size_t>> key;
-  key.reserve(v.size());
+  thread_local std::vector<std::pair<double, std::size_t>> key;  // kept: no allocation per call
+  key.clear();
   for (std::size_t i : v) {
     const double dx = points[i].x - c.x, dy = points[i].y - c.y;
     key.emplace_back(-(dx * dx + dy * dy), i);
@@ -300,6 +300,7 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
       shared ? *shared : own.emplace(internal::sector_sample(points));
   const Point2 c0 = sample.warm.center;
   std::vector<std::size_t> set;
+  set.reserve(sample.farthest.size() + 256);
   for (const std::size_t i : sample.farthest)
     if (i < n) set.push_back(i);
   if (set.size() < 2) set.push_back(0);  // degenerate warm start; the loop repairs it
@@ -308,7 +309,6 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
   std::vector<std::pair<double, std::size_t>> violator_keys;
   flagged.reserve(1024);  // a first round on a sparse sample flags a few hundred points
   violators.reserve(1024);
-  set.reserve(set.size() + 256);
   Support support;
   ExactCircle circle;
   std::size_t rounds = 0, exact_calls = 0;

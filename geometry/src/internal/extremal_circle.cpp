@@ -280,6 +280,83 @@ VCMM_SIMD_CLONES void sample_angles(const double* x, const double* y, std::size_
 
 }  // namespace
 
+namespace {
+
+/// range_extreme's kernel for one direction and tie rule: per lane the extreme and its index
+/// (strict comparisons keep a lane's first, non-strict its last; NaN never taken, as in the
+/// walk), then across lanes, then the tail point by point.
+template <bool kFarthest, bool kLast>
+[[gnu::always_inline]] inline void range_extreme_body(const Point2* points, std::size_t lo,
+                                                      std::size_t count, Point2 c,
+                                                      double scale, std::size_t& index,
+                                                      double& value) {
+  constexpr double kWorst = (kFarthest ? -1.0 : 1.0) * std::numeric_limits<double>::infinity();
+  const auto take = [](double d, double best) {
+    if constexpr (kFarthest) return kLast ? d >= best : d > best;
+    else return kLast ? d <= best : d < best;
+  };
+  const double* xy = reinterpret_cast<const double*>(points + lo);
+  std::size_t k = 0, best = 0;
+  double best_d = kWorst;
+  if (count >= 8) {
+    V8 bv = V8{} + kWorst;
+    M8 bi = M8{}, at = {0, 1, 2, 3, 4, 5, 6, 7};
+    for (; k + 8 <= count; k += 8) {
+      V8 a, b;
+      std::memcpy(&a, xy + 2 * k, sizeof a);
+      std::memcpy(&b, xy + 2 * k + 8, sizeof b);
+      const V8 dx = (__builtin_shufflevector(a, b, 0, 2, 4, 6, 8, 10, 12, 14) - c.x) * scale;
+      const V8 dy = (__builtin_shufflevector(a, b, 1, 3, 5, 7, 9, 11, 13, 15) - c.y) * scale;
+      const V8 d = dx * dx + dy * dy;
+      M8 t;
+      if constexpr (kFarthest) t = kLast ? d >= bv : d > bv;
+      else t = kLast ? d <= bv : d < bv;
+      bv = t ? d : bv;
+      bi = t ? at : bi;
+      at += 8;
+    }
+    for (int l = 0; l < 8; ++l)
+      if (kFarthest ? bv[l] > best_d : bv[l] < best_d) best_d = bv[l];
+    bool found = false;
+    for (int l = 0; l < 8; ++l)
+      if (bv[l] == best_d) {
+        const auto idx = static_cast<std::size_t>(bi[l]);
+        if (!found || (kLast ? idx > best : idx < best)) best = idx;
+        found = true;
+      }
+  }
+  for (; k < count; ++k) {
+    const double d = scaled_distance2(points[lo + k], c, scale);
+    if (take(d, best_d)) {
+      best = k;
+      best_d = d;
+    }
+  }
+  index = lo + best;
+  value = best_d;
+}
+
+VCMM_SIMD_CLONES void range_extreme_kernel(const Point2* points, std::size_t lo,
+                                           std::size_t count, Point2 c, double scale,
+                                           bool farthest, bool last_on_tie,
+                                           std::size_t& index, double& value) {
+  if (farthest) {
+    if (last_on_tie) range_extreme_body<true, true>(points, lo, count, c, scale, index, value);
+    else range_extreme_body<true, false>(points, lo, count, c, scale, index, value);
+  } else {
+    if (last_on_tie) range_extreme_body<false, true>(points, lo, count, c, scale, index, value);
+    else range_extreme_body<false, false>(points, lo, count, c, scale, index, value);
+  }
+}
+
+}  // namespace
+
+void range_extreme(const Point2* points, std::size_t lo, std::size_t count, Point2 c,
+                   double scale, bool farthest, bool last_on_tie, std::size_t& index,
+                   double& value) {
+  range_extreme_kernel(points, lo, count, c, scale, farthest, last_on_tie, index, value);
+}
+
 SectorSample sector_sample(std::span<const Point2> points) {
   const std::size_t n = points.size();
   SectorSample out;

@@ -185,28 +185,87 @@ void finish(ExactCircle& c) {
 
 }  // namespace
 
-double sample_scale(std::span<const Point2> points, Point2 c, std::size_t stride) {
-  double m = 0.0;
-  for (std::size_t i = 0; i < points.size(); i += stride)
-    m = std::max({m, std::fabs(points[i].x - c.x), std::fabs(points[i].y - c.y)});
+namespace {
+
+/// The power of two sample_scale gives for the largest offset m.
+double scale_of_extent(double m) {
   if (!(m > 0.0) || !std::isfinite(m)) return 1.0;
   int e = 0;
   (void)std::frexp(m, &e);  // m = f·2^e, f ∈ [0.5, 1)
   return std::ldexp(1.0, std::clamp(-e, -1022, 1023));
 }
 
+#pragma GCC diagnostic ignored "-Wpsabi"  // 64-byte vectors inside the kernels only
+using V8 = VecOf<8>::type;  // internal/vec.h
+using M8 = VecOf<8>::mask;
+
+/// max(0, |x_k − cx|, |y_k − cy|) over k < m, NaN never taken (as sample_scale's
+/// std::max({m, a, b}) in order: the largest of the others, exact in any order), lane-wise.
+VCMM_SIMD_CLONES double max_abs_offset(const double* x, const double* y, std::size_t m,
+                                       double cx, double cy) {
+  V8 acc = V8{};
+  std::size_t k = 0;
+  for (; k + 8 <= m; k += 8) {
+    V8 vx, vy;
+    std::memcpy(&vx, x + k, sizeof vx);
+    std::memcpy(&vy, y + k, sizeof vy);
+    const V8 dx = vx - cx, dy = vy - cy;
+    const V8 ax = dx < 0.0 ? -dx : dx, ay = dy < 0.0 ? -dy : dy;  // as std::fabs (no −0)
+    acc = acc < ax ? ax : acc;
+    acc = acc < ay ? ay : acc;
+  }
+  double r = 0.0;
+  for (int l = 0; l < 8; ++l) r = r < acc[l] ? acc[l] : r;
+  for (; k < m; ++k) r = std::max({r, std::fabs(x[k] - cx), std::fabs(y[k] - cy)});
+  return r;
+}
+
+/// kasa_center's terms, lane-wise: u = (x − mx)·s, v = (y − my)·s and the seven products its
+/// moment sums add (uu, uv, vv, uu·u, vv·v, u·vv, v·uu: the scalar expressions), into
+/// out[j·m + k].
+VCMM_SIMD_CLONES void kasa_terms(const double* x, const double* y, std::size_t m, double mx,
+                                 double my, double s, double* out) {
+  for (std::size_t k = 0; k < m; ++k) {
+    const double u = (x[k] - mx) * s, v = (y[k] - my) * s;
+    const double uu = u * u, vv = v * v;
+    out[k] = uu;
+    out[m + k] = u * v;
+    out[2 * m + k] = vv;
+    out[3 * m + k] = uu * u;
+    out[4 * m + k] = vv * v;
+    out[5 * m + k] = u * vv;
+    out[6 * m + k] = v * uu;
+  }
+}
+
+}  // namespace
+
+double sample_scale(std::span<const Point2> points, Point2 c, std::size_t stride) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < points.size(); i += stride)
+    m = std::max({m, std::fabs(points[i].x - c.x), std::fabs(points[i].y - c.y)});
+  return scale_of_extent(m);
+}
+
 WarmStart kasa_center(std::span<const Point2> points) {
   // A warm start needs no more than ~256 points: take every stride-th one (a measured
   // profile is ordered along the contour, so a stride keeps the angular coverage).
   const std::size_t stride = std::max<std::size_t>(1, points.size() / 256);
-  // The sample gathered once (each strided point is a cache line of its own; the three
-  // passes below then read it contiguously).
-  thread_local std::vector<Point2> gathered;
-  gathered.clear();
-  for (std::size_t i = 0; i < points.size(); i += stride) gathered.push_back(points[i]);
-  const std::span<const Point2> sample = gathered;
+  // The sample gathered once into x and y (each strided point is a cache line of its own;
+  // the passes below then read it contiguously), its mean summed on the way; then the
+  // scale and the terms of the moments lane-wise, and the moments summed in sample order
+  // (the sums' order fixes their bits).
+  const std::size_t m = (points.size() + stride - 1) / stride;
+  thread_local std::vector<double> buffer;
+  buffer.resize(9 * m);
+  double* x = buffer.data();
+  double* y = x + m;
+  double* terms = y + m;
   double count = 0.0, mx = 0.0, my = 0.0;
-  for (const Point2& p : sample) {
+  for (std::size_t k = 0; k < m; ++k) {
+    const Point2& p = points[k * stride];
+    x[k] = p.x;
+    y[k] = p.y;
     mx += p.x;
     my += p.y;
     count += 1.0;
@@ -217,20 +276,19 @@ WarmStart kasa_center(std::span<const Point2> points) {
     mx = points[0].x;
     my = points[0].y;
   }
-  // Work on (p − mean)·s, s a power of two making the coordinates O(1): no overflow of the
-  // third moments whatever the input magnitude.
-  const double sc = sample_scale(sample, {mx, my}, 1);
+  // Work on (p − mean)·s, s a power of two making the coordinates O(1) (sample_scale): no
+  // overflow of the third moments whatever the input magnitude.
+  const double sc = scale_of_extent(max_abs_offset(x, y, m, mx, my));
+  kasa_terms(x, y, m, mx, my, sc, terms);
   double suu = 0, suv = 0, svv = 0, suuu = 0, svvv = 0, suvv = 0, svuu = 0;
-  for (const Point2& p : sample) {
-    const double u = (p.x - mx) * sc, v = (p.y - my) * sc;
-    const double uu = u * u, vv = v * v;
-    suu += uu;
-    suv += u * v;
-    svv += vv;
-    suuu += uu * u;
-    svvv += vv * v;
-    suvv += u * vv;
-    svuu += v * uu;
+  for (std::size_t k = 0; k < m; ++k) {
+    suu += terms[k];
+    suv += terms[m + k];
+    svv += terms[2 * m + k];
+    suuu += terms[3 * m + k];
+    svvv += terms[4 * m + k];
+    suvv += terms[5 * m + k];
+    svuu += terms[6 * m + k];
   }
   // Bullock's centred Kåsa system: [suu suv; suv svv]·(a, b) = ½(suuu + suvv, svvv + svuu).
   const double det = suu * svv - suv * suv;
@@ -246,10 +304,6 @@ WarmStart kasa_center(std::span<const Point2> points) {
 }
 
 namespace {
-
-#pragma GCC diagnostic ignored "-Wpsabi"  // 64-byte vectors inside the kernel only
-using V8 = VecOf<8>::type;  // internal/vec.h
-using M8 = VecOf<8>::mask;
 
 /// d2 = dx² + dy² and phi = pseudo_angle(dx, dy) of (x − cx)·s0, (y − cy)·s0 for m values,
 /// lane by lane the scalar expressions (pseudo_angle's branches as selects, its division

@@ -223,19 +223,25 @@ VCMM_SIMD_CLONES double max_abs_offset(const double* x, const double* y, std::si
 /// kasa_center's terms, lane-wise: u = (x − mx)·s, v = (y − my)·s and the seven products its
 /// moment sums add (uu, uv, vv, uu·u, vv·v, u·vv, v·uu: the scalar expressions), into
 /// out[j·m + k].
+/// kasa_terms' expressions for one value or one vector of u and v (always inlined: no
+/// vector crosses a call boundary, internal/vec.h).
+template <class T>
+[[gnu::always_inline]] inline void store_kasa_terms(T u, T v, double* out, std::size_t m) {
+  const T uu = u * u, vv = v * v;
+  const T t[7] = {uu, u * v, vv, uu * u, vv * v, u * vv, v * uu};
+  for (std::size_t j = 0; j < 7; ++j) std::memcpy(out + j * m, &t[j], sizeof t[j]);
+}
+
 VCMM_SIMD_CLONES void kasa_terms(const double* x, const double* y, std::size_t m, double mx,
                                  double my, double s, double* out) {
-  for (std::size_t k = 0; k < m; ++k) {
-    const double u = (x[k] - mx) * s, v = (y[k] - my) * s;
-    const double uu = u * u, vv = v * v;
-    out[k] = uu;
-    out[m + k] = u * v;
-    out[2 * m + k] = vv;
-    out[3 * m + k] = uu * u;
-    out[4 * m + k] = vv * v;
-    out[5 * m + k] = u * vv;
-    out[6 * m + k] = v * uu;
+  std::size_t k = 0;
+  for (; k + 8 <= m; k += 8) {
+    V8 vx, vy;
+    std::memcpy(&vx, x + k, sizeof vx);
+    std::memcpy(&vy, y + k, sizeof vy);
+    store_kasa_terms<V8>((vx - mx) * s, (vy - my) * s, out + k, m);
   }
+  for (; k < m; ++k) store_kasa_terms<double>((x[k] - mx) * s, (y[k] - my) * s, out + k, m);
 }
 
 }  // namespace

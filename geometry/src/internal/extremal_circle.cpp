@@ -311,11 +311,15 @@ WarmStart kasa_center(std::span<const Point2> points) {
 
 namespace {
 
-/// d2 = dx² + dy² and phi = pseudo_angle(dx, dy) of (x − cx)·s0, (y − cy)·s0 for m values,
-/// lane by lane the scalar expressions (pseudo_angle's branches as selects, its division
-/// vectorised); compiled for AVX-512, AVX2 and the baseline.
+/// d2 = dx² + dy² of (x − cx)·s0, (y − cy)·s0 for m values, and of phi = pseudo_angle(dx, dy)
+/// the occupancy bucket min(⌊phi·64⌋, 255) and the sector min(⌊phi·sector_scale⌋,
+/// sector_last); lane by lane the scalar expressions (pseudo_angle's branches as selects, its
+/// division and the truncations vectorised); compiled for AVX-512, AVX2 and the baseline.
 VCMM_SIMD_CLONES void sample_angles(const double* x, const double* y, std::size_t m,
-                                    Point2 c, double s0, double* d2, double* phi) {
+                                    Point2 c, double s0, double sector_scale,
+                                    int sector_last, double* d2, std::int32_t* bucket,
+                                    std::int32_t* sector) {
+  using I8 = std::int32_t __attribute__((vector_size(32)));
   std::size_t k = 0;
   for (; k + 8 <= m; k += 8) {
     V8 vx, vy;
@@ -329,12 +333,20 @@ VCMM_SIMD_CLONES void sample_angles(const double* x, const double* y, std::size_
     const V8 right = dy >= 0.0 ? t : 4.0 - t, left = dy >= 0.0 ? 2.0 - t : 2.0 + t;
     const V8 p = sum == 0.0 ? V8{} : (dx >= 0.0 ? right : left);
     std::memcpy(d2 + k, &d, sizeof d);
-    std::memcpy(phi + k, &p, sizeof p);
+    // Truncations of values in [0, 256] and [0, sectors] (4 − tiny may round up to 4: clamp).
+    I8 b = __builtin_convertvector(p * 64.0, I8);
+    I8 q = __builtin_convertvector(p * sector_scale, I8);
+    b = b > 255 ? I8{} + 255 : b;
+    q = q > sector_last ? I8{} + sector_last : q;
+    std::memcpy(bucket + k, &b, sizeof b);
+    std::memcpy(sector + k, &q, sizeof q);
   }
   for (; k < m; ++k) {
     const double dx = (x[k] - c.x) * s0, dy = (y[k] - c.y) * s0;
     d2[k] = dx * dx + dy * dy;
-    phi[k] = pseudo_angle(dx, dy);
+    const double p = pseudo_angle(dx, dy);
+    bucket[k] = std::min(static_cast<std::int32_t>(p * 64.0), 255);
+    sector[k] = std::min(static_cast<std::int32_t>(p * sector_scale), sector_last);
   }
 }
 
@@ -435,20 +447,24 @@ SectorSample sector_sample(std::span<const Point2> points) {
   // strictly, so the first extreme point still wins.
   const std::size_t m = (n + out.stride - 1) / out.stride;
   thread_local std::vector<double> buffer;
-  buffer.resize(4 * m);
+  thread_local std::vector<std::int32_t> buckets;
+  buffer.resize(3 * m);
+  buckets.resize(2 * m);
   double* x = buffer.data();
   double* y = x + m;
   double* d2 = y + m;
-  double* phi = d2 + m;
+  std::int32_t* bucket_of = buckets.data();
+  std::int32_t* sector_of = bucket_of + m;
   for (std::size_t k = 0; k < m; ++k) {
     x[k] = points[k * out.stride].x;
     y[k] = points[k * out.stride].y;
   }
-  sample_angles(x, y, m, c0, out.warm.scale, d2, phi);
+  const double scale = static_cast<double>(out.sectors) / 4.0;
+  sample_angles(x, y, m, c0, out.warm.scale, scale, static_cast<int>(out.sectors) - 1, d2,
+                bucket_of, sector_of);
   std::array<double, 64> near, far;
   near.fill(std::numeric_limits<double>::infinity());
   far.fill(-1.0);
-  const double scale = static_cast<double>(out.sectors) / 4.0;
   std::array<std::uint64_t, 4> occupied{};
   unsigned word = 0;
   std::uint64_t bits = 0;
@@ -468,17 +484,14 @@ SectorSample sector_sample(std::span<const Point2> points) {
   };
   for (std::size_t k = 0; k < m; ++k) {
     const std::size_t i = k * out.stride;
-    // Truncation of values in [0, 256] (4 − tiny may round up to 4: clamp).
-    auto bucket = static_cast<unsigned>(phi[k] * 64.0);
-    if (bucket > 255u) bucket = 255u;
+    const auto bucket = static_cast<unsigned>(bucket_of[k]);
     if ((bucket >> 6) != word) {  // runs of one 64-bit word too: its bits kept in a register
       occupied[word] |= bits;
       word = bucket >> 6;
       bits = 0;
     }
     bits |= std::uint64_t{1} << (bucket & 63u);
-    auto s = static_cast<std::size_t>(phi[k] * scale);
-    if (s >= out.sectors) s = out.sectors - 1;
+    const auto s = static_cast<std::size_t>(sector_of[k]);
     const double d = d2[k];
     if (s != run) {
       merge_run();

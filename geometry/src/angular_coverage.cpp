@@ -67,12 +67,16 @@ struct WalkScratch {
 thread_local WalkScratch scratch;
 
 /// What pass 1 keeps besides the tangents: their extremes and sum, the smallest a · b, the
-/// extremes of a × b, and the first step from the upper half-plane into the lower one
-/// (`first_down`: the sign bit of y clear at the step's start, set at its end) and the first
-/// the other way (`first_up`); n when there is none.
+/// turn of the first step (`ccw`: a × b > 0; every tangent is taken with the sign that makes
+/// it positive for that turn, so a step turning the other way, or not at all, has t ≤ 0),
+/// and the sum of the indices of the steps crossing θ = ±π in increasing angle for that
+/// turn (from the upper half-plane into the lower one for `ccw` — the sign bit of y clear at
+/// the step's start, set at its end — the other way round otherwise): the wrap step's index
+/// when there is exactly one.
 struct StepSummary {
-  double t_max, t_min, t_sum, dot_min, cross_min, cross_max;
-  std::size_t first_down, first_up;
+  double t_max, t_min, t_sum, dot_min;
+  bool ccw;
+  std::size_t wrap_sum;
 };
 
 [[gnu::always_inline]] inline V8 vmax(V8 a, V8 b) { return a > b ? a : b; }
@@ -87,9 +91,13 @@ VCMM_SIMD_CLONES void walk_steps(const Point2* p, std::size_t n, Point2 c, doubl
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const V8 cx = V8{} + c.x, cy = V8{} + c.y;
   V8 t_max = V8{}, t_min = V8{} + kInf, t_sum = V8{}, dot_min = V8{} + kInf;
-  V8 cross_min = V8{} + kInf, cross_max = V8{} - kInf;
-  const auto none = static_cast<long long>(n);
-  M8 down = M8{} + none, up = M8{} + none;
+  // The first step's turn (the loop's expressions): flip = the sign bit when clockwise.
+  const double cross0 =
+      (p[0].x - c.x) * (p[1].y - c.y) - (p[0].y - c.y) * (p[1].x - c.x);
+  const bool ccw = cross0 > 0.0;
+  const long long flip = ccw ? 0 : std::numeric_limits<long long>::min();
+  const M8 vflip = M8{} + flip;
+  M8 wraps = M8{};
   M8 at = M8{0, 1, 2, 3, 4, 5, 6, 7};
   const M8 even = {0, 2, 4, 6, 8, 10, 12, 14}, odd = {1, 3, 5, 7, 9, 11, 13, 15};
   std::size_t i = 0;
@@ -104,61 +112,50 @@ VCMM_SIMD_CLONES void walk_steps(const Point2* p, std::size_t n, Point2 c, doubl
     const V8 bx = __builtin_shuffle(b0, b1, even) - cx, by = __builtin_shuffle(b0, b1, odd) - cy;
     const V8 cross = ax * by - ay * bx;
     const V8 dot = ax * bx + ay * by;
-    M8 bits;  // |a × b|: the sign bit cleared, as std::fabs
+    M8 bits;  // a × b with the sign that is positive for the first step's turn
     std::memcpy(&bits, &cross, sizeof bits);
-    bits &= M8{} + 0x7fffffffffffffffLL;
-    V8 abs_cross;
-    std::memcpy(&abs_cross, &bits, sizeof abs_cross);
-    const V8 ti = abs_cross / dot;
+    bits ^= vflip;
+    V8 turn;
+    std::memcpy(&turn, &bits, sizeof turn);
+    const V8 ti = turn / dot;
     std::memcpy(t + i, &ti, sizeof ti);
     t_max = vmax(t_max, ti);
     t_min = vmin(t_min, ti);
     t_sum += ti;
     dot_min = vmin(dot_min, dot);
-    cross_min = vmin(cross_min, cross);
-    cross_max = vmax(cross_max, cross);
     M8 sa, sb;  // sign bits of the y components (−0 has it set, as atan2 sees it)
     std::memcpy(&sa, &ay, sizeof sa);
     std::memcpy(&sb, &by, sizeof sb);
-    // The step's index where it goes down (up), else n; the lane's first one kept.
-    const M8 is_down = (~sa & sb) >> 63, is_up = (sa & ~sb) >> 63;  // all ones or zero
-    const M8 down_at = (is_down & at) | (~is_down & (M8{} + none));
-    const M8 up_at = (is_up & at) | (~is_up & (M8{} + none));
-    down = down < down_at ? down : down_at;
-    up = up < up_at ? up : up_at;
+    // Crossing θ = ±π in increasing angle: down for ccw, up otherwise (all ones or zero).
+    const M8 is_wrap = (~(sa ^ vflip) & (sb ^ vflip)) >> 63;
+    wraps += is_wrap & at;
     at += 8;
   }
-  double tm = 0.0, tn = kInf, ts = 0.0, dn = kInf, cn = kInf, cm = -kInf;
-  std::size_t first_down = n, first_up = n;
+  double tm = 0.0, tn = kInf, ts = 0.0, dn = kInf;
+  std::size_t wrap_sum = 0;
   for (int k = 0; k < 8; ++k) {
     tm = std::max(tm, t_max[k]);
     tn = std::min(tn, t_min[k]);
     ts += t_sum[k];
     dn = std::min(dn, dot_min[k]);
-    cn = std::min(cn, cross_min[k]);
-    cm = std::max(cm, cross_max[k]);
-    first_down = std::min(first_down, static_cast<std::size_t>(down[k]));
-    first_up = std::min(first_up, static_cast<std::size_t>(up[k]));
+    wrap_sum += static_cast<std::size_t>(wraps[k]);
   }
   for (; i < n; ++i) {
     const std::size_t j = i + 1 == n ? 0 : i + 1;
     const double ax = p[i].x - c.x, ay = p[i].y - c.y, bx = p[j].x - c.x, by = p[j].y - c.y;
     const double cross = ax * by - ay * bx;
     const double dot = ax * bx + ay * by;
-    const double ti = std::fabs(cross) / dot;
+    const double ti = (ccw ? cross : -cross) / dot;
     t[i] = ti;
     tm = std::max(tm, ti);
     tn = std::min(tn, ti);
     ts += ti;
     dn = std::min(dn, dot);
-    cn = std::min(cn, cross);
-    cm = std::max(cm, cross);
     const bool a_upper = !std::signbit(ay), b_upper = !std::signbit(by);
-    if (a_upper && !b_upper) first_down = std::min(first_down, i);
-    if (!a_upper && b_upper) first_up = std::min(first_up, i);
+    if (ccw ? a_upper && !b_upper : !a_upper && b_upper) wrap_sum += i;
   }
   // A NaN anywhere propagates into the sum (max and min may drop it).
-  out = {tm, tn, ts, dn, cn, cm, first_down, first_up};
+  out = {tm, tn, ts, dn, ccw, wrap_sum};
 }
 
 /// The steps s with t[s] ≥ threshold, ascending, into `out`; false (out incomplete) when
@@ -207,17 +204,21 @@ std::optional<Walk> angular_walk(std::span<const Point2> points, Point2 center,
   // extremes and a sum (NaN from non-finite input propagates into the sum).
   StepSummary s;
   walk_steps(points.data(), n, center, ws.t.data(), s);
-  // Once round: all steps turn one way, so the angles θ_i add up to 2πk, k ≥ 1; θ ≤ tan θ
-  // makes Σ t < 4π (with a margin far above the sum's rounding) force k = 1.
-  const bool ccw = s.cross_min > 0.0;
+  // One turn: every t (signed for the first step's turn) > 1e-9, so every step turns that
+  // way. Once round: the angles θ_i add up to 2πk, k ≥ 1; θ ≤ tan θ makes Σ t < 4π (with a
+  // margin far above the sum's rounding) force k = 1.
   if (!(s.t_min > 1e-9 && s.t_max < 1.0 && s.dot_min > 0x1.0p-900 &&
-        (ccw || s.cross_max < 0.0) && s.t_sum < 2.0 * kTwoPi * (1.0 - 1e-6)))  // false on NaN
+        s.t_sum < 2.0 * kTwoPi * (1.0 - 1e-6)))  // false on NaN
     return std::nullopt;
   // The wrap: in increasing angle, the one step from the upper half (atan2 in [+0, π]: sign
-  // bit of y clear) into the lower one (sign bit set, −0 included: atan2(−0, x < 0) = −π).
-  const std::size_t wrap = ccw ? s.first_down : s.first_up;
-  if (wrap == n) return std::nullopt;  // not reached: a walk once round crosses θ = ±π once
-  return Walk{ccw, s.t_max, wrap};
+  // bit of y clear) into the lower one (sign bit set, −0 included: atan2(−0, x < 0) = −π) —
+  // once round, exactly one step crosses, so the sum of their indices is its index (checked).
+  const std::size_t wrap = s.wrap_sum;
+  const auto upper = [&](std::size_t i) { return !std::signbit(points[i].y - center.y); };
+  const std::size_t after = wrap + 1 == n ? 0 : wrap + 1;
+  if (wrap >= n || (upper(wrap) != s.ccw) || (upper(after) == s.ccw))
+    return std::nullopt;  // not reached: a walk once round crosses θ = ±π once
+  return Walk{s.ccw, s.t_max, wrap};
 }
 
 /// The fast path described at the top; nullopt when the walk does not qualify.

@@ -155,8 +155,9 @@ struct PassResult {
 PassResult classify_all(std::span<const Point2> points, const ExactCircle& circle) {
   PassResult r;
   const Point2 c = circle.center_d;
-  std::vector<std::size_t> flagged;  // inside or ambiguous
-  flagged.reserve(1024);
+  thread_local std::vector<std::size_t> flagged;  // inside or ambiguous (kept: no allocation)
+  flagged.clear();
+  r.on_circle.reserve(8);  // the contacts and their duplicates: one allocation
   const double hi = circle.filter_usable ? circle.outside_above
                                          : std::numeric_limits<double>::infinity();
   r.ronq.radius = circle.radius;

@@ -202,8 +202,8 @@ ExactCircle exact_circle_of(std::span<const Point2> points, const Support& s) {
 /// three-loop formulation is O(m³) predicate calls, with m ≤ a few hundred candidates.
 void order_farthest_first(std::span<const Point2> points, Point2 c,
                           std::vector<std::size_t>& v) {
-  std::vector<std::pair<double, std::size_t>> key;
-  key.reserve(v.size());
+  thread_local std::vector<std::pair<double, std::size_t>> key;  // kept: no allocation per call
+  key.clear();
   for (std::size_t i : v) {
     const double dx = points[i].x - c.x, dy = points[i].y - c.y;
     key.emplace_back(-(dx * dx + dy * dy), i);
@@ -300,15 +300,17 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
       shared ? *shared : own.emplace(internal::sector_sample(points));
   const Point2 c0 = sample.warm.center;
   std::vector<std::size_t> set;
+  set.reserve(sample.farthest.size() + 256);
   for (const std::size_t i : sample.farthest)
     if (i < n) set.push_back(i);
   if (set.size() < 2) set.push_back(0);  // degenerate warm start; the loop repairs it
 
-  std::vector<std::size_t> violators, on_circle, flagged, list;
-  std::vector<std::pair<double, std::size_t>> violator_keys;
-  flagged.reserve(1024);  // a first round on a sparse sample flags a few hundred points
-  violators.reserve(1024);
-  set.reserve(set.size() + 256);
+  // Per-thread scratch, kept between calls (no allocation per round or call); a first round
+  // on a sparse sample flags a few hundred points.
+  thread_local std::vector<std::size_t> violators, flagged, list;
+  thread_local std::vector<std::pair<double, std::size_t>> violator_keys;
+  std::vector<std::size_t> on_circle;
+  on_circle.reserve(8);
   Support support;
   ExactCircle circle;
   std::size_t rounds = 0, exact_calls = 0;
@@ -322,13 +324,21 @@ MinimumCircumscribedCircle internal::fit_minimum_circumscribed_circle(
     order_farthest_first(points, order_center, set);
     // After the first round the last round's supports go first: their circle is nearly the
     // answer, so most candidates are inside it when met and cost one predicate each.
-    list.assign(set.begin(), set.end());
-    if (rounds + refinements > 0)
-      std::stable_partition(list.begin(), list.end(), [&](std::size_t i) {
-        for (int k = 0; k < support.size; ++k)
-          if (support.idx[k] == i) return true;
-        return false;
-      });
+    // (A stable partition of the set, written out: no temporary buffer.)
+    const auto is_support = [&](std::size_t i) {
+      for (int k = 0; k < support.size; ++k)
+        if (support.idx[k] == i) return true;
+      return false;
+    };
+    list.clear();
+    if (rounds + refinements > 0) {
+      for (std::size_t i : set)
+        if (is_support(i)) list.push_back(i);
+      for (std::size_t i : set)
+        if (!is_support(i)) list.push_back(i);
+    } else {
+      list.assign(set.begin(), set.end());
+    }
     support = in_three_loop_order(Welzl(points, list).run(), set);
     circle = exact_circle_of(points, support);
     // Local refinement (internal::local_extreme): a support with a farther neighbour along

@@ -922,7 +922,9 @@ enum class LpStatus { optimal, failed };
 class ChebyshevLp {
  public:
   explicit ChebyshevLp(std::span<const Point2> points)
-      : points_(points), in_candidates_(points.size(), 0) {}
+      : points_(points), in_candidates_(points.size(), 0) {
+    entries_.reserve(256);  // seeds, refinements and a few pricing rounds: one allocation
+  }
 
   /// Adds the largest and smallest distance from c per index block (contiguous blocks ≈
   /// angular sectors for scanned data): the initial candidates.

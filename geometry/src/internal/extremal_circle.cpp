@@ -185,28 +185,93 @@ void finish(ExactCircle& c) {
 
 }  // namespace
 
-double sample_scale(std::span<const Point2> points, Point2 c, std::size_t stride) {
-  double m = 0.0;
-  for (std::size_t i = 0; i < points.size(); i += stride)
-    m = std::max({m, std::fabs(points[i].x - c.x), std::fabs(points[i].y - c.y)});
+namespace {
+
+/// The power of two sample_scale gives for the largest offset m.
+double scale_of_extent(double m) {
   if (!(m > 0.0) || !std::isfinite(m)) return 1.0;
   int e = 0;
   (void)std::frexp(m, &e);  // m = f·2^e, f ∈ [0.5, 1)
   return std::ldexp(1.0, std::clamp(-e, -1022, 1023));
 }
 
+#pragma GCC diagnostic ignored "-Wpsabi"  // 64-byte vectors inside the kernels only
+using V8 = VecOf<8>::type;  // internal/vec.h
+using M8 = VecOf<8>::mask;
+
+/// max(0, |x_k − cx|, |y_k − cy|) over k < m, NaN never taken (as sample_scale's
+/// std::max({m, a, b}) in order: the largest of the others, exact in any order), lane-wise.
+VCMM_SIMD_CLONES double max_abs_offset(const double* x, const double* y, std::size_t m,
+                                       double cx, double cy) {
+  V8 acc = V8{};
+  std::size_t k = 0;
+  for (; k + 8 <= m; k += 8) {
+    V8 vx, vy;
+    std::memcpy(&vx, x + k, sizeof vx);
+    std::memcpy(&vy, y + k, sizeof vy);
+    const V8 dx = vx - cx, dy = vy - cy;
+    const V8 ax = dx < 0.0 ? -dx : dx, ay = dy < 0.0 ? -dy : dy;  // as std::fabs (no −0)
+    acc = acc < ax ? ax : acc;
+    acc = acc < ay ? ay : acc;
+  }
+  double r = 0.0;
+  for (int l = 0; l < 8; ++l) r = r < acc[l] ? acc[l] : r;
+  for (; k < m; ++k) r = std::max({r, std::fabs(x[k] - cx), std::fabs(y[k] - cy)});
+  return r;
+}
+
+/// kasa_center's terms, lane-wise: u = (x − mx)·s, v = (y − my)·s and the seven products its
+/// moment sums add (uu, uv, vv, uu·u, vv·v, u·vv, v·uu: the scalar expressions), into
+/// out[j·m + k].
+/// kasa_terms' expressions for one value or one vector of u and v (always inlined: no
+/// vector crosses a call boundary, internal/vec.h).
+template <class T>
+[[gnu::always_inline]] inline void store_kasa_terms(T u, T v, double* out, std::size_t m) {
+  const T uu = u * u, vv = v * v;
+  const T t[7] = {uu, u * v, vv, uu * u, vv * v, u * vv, v * uu};
+  for (std::size_t j = 0; j < 7; ++j) std::memcpy(out + j * m, &t[j], sizeof t[j]);
+}
+
+VCMM_SIMD_CLONES void kasa_terms(const double* x, const double* y, std::size_t m, double mx,
+                                 double my, double s, double* out) {
+  std::size_t k = 0;
+  for (; k + 8 <= m; k += 8) {
+    V8 vx, vy;
+    std::memcpy(&vx, x + k, sizeof vx);
+    std::memcpy(&vy, y + k, sizeof vy);
+    store_kasa_terms<V8>((vx - mx) * s, (vy - my) * s, out + k, m);
+  }
+  for (; k < m; ++k) store_kasa_terms<double>((x[k] - mx) * s, (y[k] - my) * s, out + k, m);
+}
+
+}  // namespace
+
+double sample_scale(std::span<const Point2> points, Point2 c, std::size_t stride) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < points.size(); i += stride)
+    m = std::max({m, std::fabs(points[i].x - c.x), std::fabs(points[i].y - c.y)});
+  return scale_of_extent(m);
+}
+
 WarmStart kasa_center(std::span<const Point2> points) {
   // A warm start needs no more than ~256 points: take every stride-th one (a measured
   // profile is ordered along the contour, so a stride keeps the angular coverage).
   const std::size_t stride = std::max<std::size_t>(1, points.size() / 256);
-  // The sample gathered once (each strided point is a cache line of its own; the three
-  // passes below then read it contiguously).
-  thread_local std::vector<Point2> gathered;
-  gathered.clear();
-  for (std::size_t i = 0; i < points.size(); i += stride) gathered.push_back(points[i]);
-  const std::span<const Point2> sample = gathered;
+  // The sample gathered once into x and y (each strided point is a cache line of its own;
+  // the passes below then read it contiguously), its mean summed on the way; then the
+  // scale and the terms of the moments lane-wise, and the moments summed in sample order
+  // (the sums' order fixes their bits).
+  const std::size_t m = (points.size() + stride - 1) / stride;
+  thread_local std::vector<double> buffer;
+  buffer.resize(9 * m);
+  double* x = buffer.data();
+  double* y = x + m;
+  double* terms = y + m;
   double count = 0.0, mx = 0.0, my = 0.0;
-  for (const Point2& p : sample) {
+  for (std::size_t k = 0; k < m; ++k) {
+    const Point2& p = points[k * stride];
+    x[k] = p.x;
+    y[k] = p.y;
     mx += p.x;
     my += p.y;
     count += 1.0;
@@ -217,20 +282,19 @@ WarmStart kasa_center(std::span<const Point2> points) {
     mx = points[0].x;
     my = points[0].y;
   }
-  // Work on (p − mean)·s, s a power of two making the coordinates O(1): no overflow of the
-  // third moments whatever the input magnitude.
-  const double sc = sample_scale(sample, {mx, my}, 1);
+  // Work on (p − mean)·s, s a power of two making the coordinates O(1) (sample_scale): no
+  // overflow of the third moments whatever the input magnitude.
+  const double sc = scale_of_extent(max_abs_offset(x, y, m, mx, my));
+  kasa_terms(x, y, m, mx, my, sc, terms);
   double suu = 0, suv = 0, svv = 0, suuu = 0, svvv = 0, suvv = 0, svuu = 0;
-  for (const Point2& p : sample) {
-    const double u = (p.x - mx) * sc, v = (p.y - my) * sc;
-    const double uu = u * u, vv = v * v;
-    suu += uu;
-    suv += u * v;
-    svv += vv;
-    suuu += uu * u;
-    svvv += vv * v;
-    suvv += u * vv;
-    svuu += v * uu;
+  for (std::size_t k = 0; k < m; ++k) {
+    suu += terms[k];
+    suv += terms[m + k];
+    svv += terms[2 * m + k];
+    suuu += terms[3 * m + k];
+    svvv += terms[4 * m + k];
+    suvv += terms[5 * m + k];
+    svuu += terms[6 * m + k];
   }
   // Bullock's centred Kåsa system: [suu suv; suv svv]·(a, b) = ½(suuu + suvv, svvv + svuu).
   const double det = suu * svv - suv * suv;
@@ -247,15 +311,15 @@ WarmStart kasa_center(std::span<const Point2> points) {
 
 namespace {
 
-#pragma GCC diagnostic ignored "-Wpsabi"  // 64-byte vectors inside the kernel only
-using V8 = VecOf<8>::type;  // internal/vec.h
-using M8 = VecOf<8>::mask;
-
-/// d2 = dx² + dy² and phi = pseudo_angle(dx, dy) of (x − cx)·s0, (y − cy)·s0 for m values,
-/// lane by lane the scalar expressions (pseudo_angle's branches as selects, its division
-/// vectorised); compiled for AVX-512, AVX2 and the baseline.
+/// d2 = dx² + dy² of (x − cx)·s0, (y − cy)·s0 for m values, and of phi = pseudo_angle(dx, dy)
+/// the occupancy bucket min(⌊phi·64⌋, 255) and the sector min(⌊phi·sector_scale⌋,
+/// sector_last); lane by lane the scalar expressions (pseudo_angle's branches as selects, its
+/// division and the truncations vectorised); compiled for AVX-512, AVX2 and the baseline.
 VCMM_SIMD_CLONES void sample_angles(const double* x, const double* y, std::size_t m,
-                                    Point2 c, double s0, double* d2, double* phi) {
+                                    Point2 c, double s0, double sector_scale,
+                                    int sector_last, double* d2, std::int32_t* bucket,
+                                    std::int32_t* sector) {
+  using I8 = std::int32_t __attribute__((vector_size(32)));
   std::size_t k = 0;
   for (; k + 8 <= m; k += 8) {
     V8 vx, vy;
@@ -269,16 +333,101 @@ VCMM_SIMD_CLONES void sample_angles(const double* x, const double* y, std::size_
     const V8 right = dy >= 0.0 ? t : 4.0 - t, left = dy >= 0.0 ? 2.0 - t : 2.0 + t;
     const V8 p = sum == 0.0 ? V8{} : (dx >= 0.0 ? right : left);
     std::memcpy(d2 + k, &d, sizeof d);
-    std::memcpy(phi + k, &p, sizeof p);
+    // Truncations of values in [0, 256] and [0, sectors] (4 − tiny may round up to 4: clamp).
+    I8 b = __builtin_convertvector(p * 64.0, I8);
+    I8 q = __builtin_convertvector(p * sector_scale, I8);
+    b = b > 255 ? I8{} + 255 : b;
+    q = q > sector_last ? I8{} + sector_last : q;
+    std::memcpy(bucket + k, &b, sizeof b);
+    std::memcpy(sector + k, &q, sizeof q);
   }
   for (; k < m; ++k) {
     const double dx = (x[k] - c.x) * s0, dy = (y[k] - c.y) * s0;
     d2[k] = dx * dx + dy * dy;
-    phi[k] = pseudo_angle(dx, dy);
+    const double p = pseudo_angle(dx, dy);
+    bucket[k] = std::min(static_cast<std::int32_t>(p * 64.0), 255);
+    sector[k] = std::min(static_cast<std::int32_t>(p * sector_scale), sector_last);
   }
 }
 
 }  // namespace
+
+namespace {
+
+/// range_extreme's kernel for one direction and tie rule: per lane the extreme and its index
+/// (strict comparisons keep a lane's first, non-strict its last; NaN never taken, as in the
+/// walk), then across lanes, then the tail point by point.
+template <bool kFarthest, bool kLast>
+[[gnu::always_inline]] inline void range_extreme_body(const Point2* points, std::size_t lo,
+                                                      std::size_t count, Point2 c,
+                                                      double scale, std::size_t& index,
+                                                      double& value) {
+  constexpr double kWorst = (kFarthest ? -1.0 : 1.0) * std::numeric_limits<double>::infinity();
+  const auto take = [](double d, double best) {
+    if constexpr (kFarthest) return kLast ? d >= best : d > best;
+    else return kLast ? d <= best : d < best;
+  };
+  const double* xy = reinterpret_cast<const double*>(points + lo);
+  std::size_t k = 0, best = 0;
+  double best_d = kWorst;
+  if (count >= 8) {
+    V8 bv = V8{} + kWorst;
+    M8 bi = M8{}, at = {0, 1, 2, 3, 4, 5, 6, 7};
+    for (; k + 8 <= count; k += 8) {
+      V8 a, b;
+      std::memcpy(&a, xy + 2 * k, sizeof a);
+      std::memcpy(&b, xy + 2 * k + 8, sizeof b);
+      const V8 dx = (__builtin_shufflevector(a, b, 0, 2, 4, 6, 8, 10, 12, 14) - c.x) * scale;
+      const V8 dy = (__builtin_shufflevector(a, b, 1, 3, 5, 7, 9, 11, 13, 15) - c.y) * scale;
+      const V8 d = dx * dx + dy * dy;
+      M8 t;
+      if constexpr (kFarthest) t = kLast ? d >= bv : d > bv;
+      else t = kLast ? d <= bv : d < bv;
+      bv = t ? d : bv;
+      bi = t ? at : bi;
+      at += 8;
+    }
+    for (int l = 0; l < 8; ++l)
+      if (kFarthest ? bv[l] > best_d : bv[l] < best_d) best_d = bv[l];
+    bool found = false;
+    for (int l = 0; l < 8; ++l)
+      if (bv[l] == best_d) {
+        const auto idx = static_cast<std::size_t>(bi[l]);
+        if (!found || (kLast ? idx > best : idx < best)) best = idx;
+        found = true;
+      }
+  }
+  for (; k < count; ++k) {
+    const double d = scaled_distance2(points[lo + k], c, scale);
+    if (take(d, best_d)) {
+      best = k;
+      best_d = d;
+    }
+  }
+  index = lo + best;
+  value = best_d;
+}
+
+VCMM_SIMD_CLONES void range_extreme_kernel(const Point2* points, std::size_t lo,
+                                           std::size_t count, Point2 c, double scale,
+                                           bool farthest, bool last_on_tie,
+                                           std::size_t& index, double& value) {
+  if (farthest) {
+    if (last_on_tie) range_extreme_body<true, true>(points, lo, count, c, scale, index, value);
+    else range_extreme_body<true, false>(points, lo, count, c, scale, index, value);
+  } else {
+    if (last_on_tie) range_extreme_body<false, true>(points, lo, count, c, scale, index, value);
+    else range_extreme_body<false, false>(points, lo, count, c, scale, index, value);
+  }
+}
+
+}  // namespace
+
+void range_extreme(const Point2* points, std::size_t lo, std::size_t count, Point2 c,
+                   double scale, bool farthest, bool last_on_tie, std::size_t& index,
+                   double& value) {
+  range_extreme_kernel(points, lo, count, c, scale, farthest, last_on_tie, index, value);
+}
 
 SectorSample sector_sample(std::span<const Point2> points) {
   const std::size_t n = points.size();
@@ -298,20 +447,24 @@ SectorSample sector_sample(std::span<const Point2> points) {
   // strictly, so the first extreme point still wins.
   const std::size_t m = (n + out.stride - 1) / out.stride;
   thread_local std::vector<double> buffer;
-  buffer.resize(4 * m);
+  thread_local std::vector<std::int32_t> buckets;
+  buffer.resize(3 * m);
+  buckets.resize(2 * m);
   double* x = buffer.data();
   double* y = x + m;
   double* d2 = y + m;
-  double* phi = d2 + m;
+  std::int32_t* bucket_of = buckets.data();
+  std::int32_t* sector_of = bucket_of + m;
   for (std::size_t k = 0; k < m; ++k) {
     x[k] = points[k * out.stride].x;
     y[k] = points[k * out.stride].y;
   }
-  sample_angles(x, y, m, c0, out.warm.scale, d2, phi);
+  const double scale = static_cast<double>(out.sectors) / 4.0;
+  sample_angles(x, y, m, c0, out.warm.scale, scale, static_cast<int>(out.sectors) - 1, d2,
+                bucket_of, sector_of);
   std::array<double, 64> near, far;
   near.fill(std::numeric_limits<double>::infinity());
   far.fill(-1.0);
-  const double scale = static_cast<double>(out.sectors) / 4.0;
   std::array<std::uint64_t, 4> occupied{};
   unsigned word = 0;
   std::uint64_t bits = 0;
@@ -331,17 +484,14 @@ SectorSample sector_sample(std::span<const Point2> points) {
   };
   for (std::size_t k = 0; k < m; ++k) {
     const std::size_t i = k * out.stride;
-    // Truncation of values in [0, 256] (4 − tiny may round up to 4: clamp).
-    auto bucket = static_cast<unsigned>(phi[k] * 64.0);
-    if (bucket > 255u) bucket = 255u;
+    const auto bucket = static_cast<unsigned>(bucket_of[k]);
     if ((bucket >> 6) != word) {  // runs of one 64-bit word too: its bits kept in a register
       occupied[word] |= bits;
       word = bucket >> 6;
       bits = 0;
     }
     bits |= std::uint64_t{1} << (bucket & 63u);
-    auto s = static_cast<std::size_t>(phi[k] * scale);
-    if (s >= out.sectors) s = out.sectors - 1;
+    const auto s = static_cast<std::size_t>(sector_of[k]);
     const double d = d2[k];
     if (s != run) {
       merge_run();

@@ -120,6 +120,15 @@ inline double scaled_distance2(Point2 p, Point2 c, double scale) {
   return dx * dx + dy * dy;
 }
 
+/// The most extreme D̃ (largest when `farthest`, else smallest; NaN never taken) of the
+/// points [lo, lo + count) about c, as scaled_distance2 computes it, and its index: among
+/// equal extremes the lowest index (`last_on_tie` false) or the highest. count ≥ 1; with no
+/// comparable value, ±∞ (never better than a D̃ strictly). Lane-wise over 8 points at a time
+/// (AVX-512, AVX2 or the baseline).
+void range_extreme(const Point2* points, std::size_t lo, std::size_t count, Point2 c,
+                   double scale, bool farthest, bool last_on_tie, std::size_t& index,
+                   double& value);
+
 /// Local refinement of a round's supports without an O(n) pass (a warm-start helper:
 /// correctness never depends on it). From input index i, looks along the input order
 /// (cyclically, both ways) at the `window` neighbours each way and on beyond them while
@@ -129,7 +138,9 @@ inline double scaled_distance2(Point2 p, Point2 c, double scale) {
 /// the supports of a circle fitted to a sparse candidate set sit a few indices off the
 /// contacts of the full set (near a smooth extremum a small centre shift moves it along
 /// the profile), or in a neighbouring valley of the same sector; the walk finds those
-/// points, which would otherwise be the violators of the next full pass.
+/// points, which would otherwise be the violators of the next full pass. The windows are
+/// taken by range_extreme on their (at most two) contiguous ranges: the point a step-by-step
+/// walk with strict comparisons would keep (the first extreme in walk order).
 template <bool kFarthest>
 std::size_t local_extreme(std::span<const Point2> points, std::size_t i, Point2 c,
                           double scale, std::size_t window, std::size_t limit) {
@@ -140,19 +151,60 @@ std::size_t local_extreme(std::span<const Point2> points, std::size_t i, Point2 
   std::size_t best = i;
   double best_d = d0;
   window = std::min(window, limit);
+  // Windows shorter than n (each point at most once) by ranges; a window wrapping onto
+  // itself, or d0 NaN (nothing better), step by step.
+  const bool by_ranges = window < n && d0 == d0;
   for (const bool forward : {true, false}) {
     const auto next = [&](std::size_t j) {
       return forward ? (j + 1 == n ? 0 : j + 1) : (j == 0 ? n - 1 : j - 1);
     };
-    // The window: every neighbour, branch-free selects (noisy data: unpredictable).
     std::size_t j = i;
     double dj = d0;
-    for (std::size_t step = 1; step <= window; ++step) {
-      j = next(j);
+    if (by_ranges && window > 0) {
+      // The window in walk order: [i + 1, i + w] forward (then from 0 on a wrap), [i − w, i)
+      // backward (then up to n on a wrap), a range's first extreme in walk order its lowest
+      // index forward and its highest backward; each taken only when strictly better.
+      std::size_t lo[2], count[2];
+      int ranges = 1;
+      if (forward) {
+        const std::size_t first = i + 1 == n ? 0 : i + 1;
+        lo[0] = first;
+        count[0] = std::min(window, n - first);
+        if (count[0] < window) {
+          lo[1] = 0;
+          count[1] = window - count[0];
+          ranges = 2;
+        }
+      } else {
+        count[0] = std::min(window, i);
+        lo[0] = i - count[0];
+        if (count[0] < window) {
+          count[1] = window - count[0];
+          lo[1] = n - count[1];
+          ranges = 2;
+        }
+      }
+      for (int r = 0; r < ranges; ++r) {
+        if (count[r] == 0) continue;
+        std::size_t k = 0;
+        double v = 0.0;
+        range_extreme(points.data(), lo[r], count[r], c, scale, kFarthest, !forward, k, v);
+        if (better(v, best_d)) {
+          best = k;
+          best_d = v;
+        }
+      }
+      j = forward ? (i + window) % n : (i + n - window) % n;
       dj = scaled_distance2(points[j], c, scale);
-      const bool b = better(dj, best_d);
-      best = b ? j : best;
-      best_d = b ? dj : best_d;
+    } else {
+      // The window: every neighbour, branch-free selects (noisy data: unpredictable).
+      for (std::size_t step = 1; step <= window; ++step) {
+        j = next(j);
+        dj = scaled_distance2(points[j], c, scale);
+        const bool b = better(dj, best_d);
+        best = b ? j : best;
+        best_d = b ? dj : best_d;
+      }
     }
     // Beyond it: on while the distance keeps moving the same way.
     for (std::size_t step = window + 1; step <= limit; ++step) {

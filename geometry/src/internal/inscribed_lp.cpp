@@ -19,7 +19,9 @@ constexpr double kPreciseCosts = 4096.0;
 }  // namespace
 
 InscribedLp::InscribedLp(std::span<const Point2> points, double scale)
-    : points_(points), scale_(scale), in_(points.size(), 0) {}
+    : points_(points), scale_(scale), in_(points.size(), 0) {
+  cols_.reserve(128);  // the sample's nearest points, refinements, a round of violators
+}
 
 void InscribedLp::add(std::size_t i) {
   if (in_[i] != 0) return;
@@ -31,7 +33,8 @@ bool InscribedLp::solve(Point2 c0) {
   if (cols_.size() < 3) return false;
   rho_min_ = std::numeric_limits<double>::infinity();
   rho_max_ = 0.0;
-  std::vector<double> rho(cols_.size());
+  std::vector<double>& rho = rho_;
+  rho.resize(cols_.size());
   for (std::size_t k = 0; k < cols_.size(); ++k) {
     Column& c = cols_[k];
     const double dx = (c0.x - points_[c.point].x) * scale_;

@@ -72,6 +72,7 @@ class InscribedLp {
   double scale_ = 1.0;
   std::vector<std::uint8_t> in_;
   std::vector<Column> cols_;
+  std::vector<double> rho_;  ///< solve's scratch (kept: no allocation per round)
   double shift_ = 0.0, rho_min_ = 0.0, rho_max_ = 0.0, cost_scale_ = 0.0;
   bool precise_ = false;  ///< costs in double-double (candidates' radii within 2¹²u·ρ)
   bool forced_ = false;   ///< precise costs requested by the caller

@@ -538,8 +538,8 @@ template <int W>
   for (std::size_t k = 0; k < count; ++k) n *= stages[k].radix;
   std::size_t k0 = 0;  // the passes done before the loop below
   if (io.in != nullptr) {
-    const ComplexFft::Stage& st = stages[0];
-    if (count >= 2 && has_first_pass_kernel(st.radix)) {
+    if (count >= 2 && has_first_pass_kernel(stages[0].radix)) {
+      const ComplexFft::Stage& st = stages[0];  // (a size-1 plan has no stages: no reference)
       switch (st.radix) {
         case 2: radix_pass<2, W>(xr, xi, yr, yi, 1, st, io.in); break;
         case 4: radix_pass<4, W>(xr, xi, yr, yi, 1, st, io.in); break;

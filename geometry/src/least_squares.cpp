@@ -452,8 +452,7 @@ __attribute__((target("avx512f"))) PassSums gn_pass_avx512(const PassInput& inpu
     if constexpr (kFull) {
       vxx_vyy += low_halves(t.vxx, t.vyy);
       vxx_vyy += high_halves(t.vxx, t.vyy);
-      vxy += internal::low_half(t.vxy);
-      vxy += internal::high_half(t.vxy);
+      internal::add_in_point_order(vxy, t.vxy);
     }
     d_dd += low_halves(t.d, t.dd);
     d_dd += high_halves(t.d, t.dd);

@@ -473,12 +473,7 @@ template <int W, bool kThin>
     const V sq = dx * dx + dy * dy;
     const V dev = deviation_of<kThin>(sq, m.rm, m.rm2, m.inv);
     const V dev2 = dev * dev;
-    if constexpr (W == 4) {
-      acc += dev2;
-    } else {
-      acc += internal::low_half(dev2);  // the points in order: internal/vec.h
-      acc += internal::high_half(dev2);
-    }
+    internal::add_in_point_order(acc, dev2);
     // Surely placed: t_in < s < t_out, i.e. max(s − t_out, t_in − s) < 0 (a difference of
     // doubles has the sign of the exact one; NaN compares false): one compare (two masks
     // combined are not vectorised for every target), the lanes AND-ed by shuffles.

@@ -100,12 +100,7 @@ template <int kDegree, int W>
     rmin = r < rmin ? r : rmin;
     const V d = (r - ref) * inv;
     const V dd = d * d;
-    if constexpr (W == 4) {
-      sum += dd;
-    } else {
-      sum += internal::low_half(dd);  // the points in order: internal/vec.h
-      sum += internal::high_half(dd);
-    }
+    internal::add_in_point_order(sum, dd);
   }
   double s_max = 0.0, r_max = -std::numeric_limits<double>::infinity();
   double r_min = std::numeric_limits<double>::infinity();

@@ -43,6 +43,18 @@ struct VecOf<8> {
 [[gnu::always_inline]] inline VecOf<4>::type high_half(const VecOf<8>::type& v) {
   return __builtin_shufflevector(v, v, 4, 5, 6, 7);
 }
+/// acc += the points of v in point order: a four-lane sum (lane j takes the points ≡ j mod 4)
+/// fed by a 4- or 8-wide vector — for 8, its low half, then its high half (the same additions
+/// in the same order as two 4-wide steps, so the same bits).
+template <class V>
+[[gnu::always_inline]] inline void add_in_point_order(VecOf<4>::type& acc, const V& v) {
+  if constexpr (sizeof(V) == sizeof(VecOf<4>::type)) {
+    acc += v;
+  } else {
+    acc += low_half(v);
+    acc += high_half(v);
+  }
+}
 /// [low half of a | low half of b] and [high half of a | high half of b]: two four-lane sums
 /// kept side by side in one 8-lane accumulator take the halves of two 8-lane terms in order.
 [[gnu::always_inline]] inline VecOf<8>::type low_halves(const VecOf<8>::type& a,
